@@ -1,0 +1,33 @@
+# drywall-lab: the two commands of the README's quick start are `make lab` and `make test`.
+PYTHON ?= python3
+VENV ?= .venv
+BIN := $(VENV)/bin
+# Notebooks honour DRYWALL_FAST=1 (fewer epochs, less data). The test suite runs in fast
+# mode unless told otherwise: `make test DRYWALL_FAST=0` executes the notebooks in full.
+DRYWALL_FAST ?= 1
+export DRYWALL_FAST
+
+.PHONY: setup lab demo test corpus clean
+
+$(BIN)/.installed: environment.txt pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install --upgrade pip
+	$(BIN)/pip install -r environment.txt
+	touch $@
+
+setup: $(BIN)/.installed  ## create .venv and install environment.txt
+
+lab: setup  ## open the course (notebooks/) in JupyterLab
+	$(BIN)/jupyter lab notebooks/
+
+demo: setup  ## headless: the course's main results printed in the terminal
+	$(BIN)/python -m drywall_lab demo
+
+test: setup  ## the whole test suite, executed notebooks included
+	$(BIN)/python -m pytest --nbval-lax --nbval-current-env tests notebooks
+
+corpus: setup  ## regenerate data/corpus from the fixed seed
+	$(BIN)/python -m drywall_lab corpus generate
+
+clean:
+	rm -rf $(VENV) build .pytest_cache .hypothesis

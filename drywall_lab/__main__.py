@@ -1,0 +1,110 @@
+"""Command line: ``python -m drywall_lab COMMAND`` (``--help`` lists the commands)."""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+
+def _cmd_corpus(args: argparse.Namespace) -> int:
+    from drywall_lab import corpus
+
+    if args.action == "generate":
+        paths = corpus.write_corpus(args.out, seed=args.seed)
+        for split, path in paths.items():
+            print(f"{split:<11} {sum(1 for _ in open(path)):>5} instructions -> {path}")
+        return 0
+    rows = corpus.read_corpus(args.corpus_dir)
+    if args.action == "stats":
+        corpus.print_comparison(rows)
+        return 0 if not corpus.check_against_paper(rows) else 1
+    if args.action == "conll":
+        text = corpus.to_conll(rows[args.split])
+        if args.out:
+            Path(args.out).write_text(text, encoding="utf-8")
+            print(f"{len(rows[args.split])} instructions -> {args.out}")
+        else:
+            sys.stdout.write(text)
+        return 0
+    raise AssertionError(args.action)
+
+
+def _cmd_score(args: argparse.Namespace) -> int:
+    from drywall_lab.annotation import score_annotator
+    from drywall_lab.corpus import from_conll
+
+    gold = from_conll(Path(args.gold))
+    answer = from_conll(Path(args.answer))
+    report = score_annotator([r["tags"] for r in gold], [r["tags"] for r in answer])
+    print(report.summary())
+    return 0
+
+
+def _cmd_demo(args: argparse.Namespace) -> int:
+    """A headless walk through what is built so far: the site, the corpus, agreement."""
+    import pandas as pd
+
+    from drywall_lab import corpus
+    from drywall_lab.annotation import score_annotator
+    from drywall_lab.site import default_site
+
+    site = default_site()
+    print("== The site (spec section 1) ==")
+    print(pd.DataFrame([vars(s) for s in site.studs]).to_string(index=False))
+    print(pd.DataFrame([vars(p) for p in site.panels]).to_string(index=False))
+    rows = corpus.read_corpus()
+    print("\n== Three training instructions with their tags ==")
+    for row in rows["train"][:3]:
+        print(row["text"])
+        print("   " + " ".join(f"{w}/{t}" for w, t in zip(row["words"], row["tags"]) if t != "O"))
+        print("   expected:", row["expected"])
+    print("\n== The corpus against the paper's Table 2 ==")
+    corpus.print_comparison(rows)
+    practice = Path(__file__).resolve().parent.parent / "annotation_guidelines" / "practice"
+    if (practice / "student_answer.conll").exists():
+        key = corpus.from_conll(practice / "practice_key.conll")
+        answer = corpus.from_conll(practice / "student_answer.conll")
+        print("\n== A student's practice annotation scored against the key ==")
+        print(score_annotator([r["tags"] for r in key], [r["tags"] for r in answer]).summary())
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from drywall_lab.corpus import CORPUS_DIR, SEED
+
+    parser = argparse.ArgumentParser(prog="python -m drywall_lab", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("corpus", help="generate the instruction corpus, print its statistics, export CoNLL")
+    p.add_argument("action", choices=["generate", "stats", "conll"])
+    p.add_argument("--out", default=None, help="generate: output folder (default data/corpus); conll: file")
+    p.add_argument("--seed", type=int, default=SEED)
+    p.add_argument("--split", default="test", choices=["train", "validation", "test", "novel"])
+    p.add_argument("--corpus-dir", default=None, help="read the corpus from here (default data/corpus)")
+    p.set_defaults(func=_cmd_corpus)
+
+    p = sub.add_parser("score", help="score an annotation (CoNLL) against a gold CoNLL file")
+    p.add_argument("gold")
+    p.add_argument("answer")
+    p.set_defaults(func=_cmd_score)
+
+    p = sub.add_parser("demo", help="headless walk-through of the course material")
+    p.set_defaults(func=_cmd_demo)
+    parser.set_defaults(default_out=CORPUS_DIR)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if getattr(args, "command", None) == "corpus" and args.action == "generate" and args.out is None:
+        args.out = args.default_out
+    try:
+        return args.func(args)
+    except (ValueError, FileNotFoundError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -327,6 +327,21 @@ def _panel_anchor(ch: P.Chooser, anchor: str) -> Phrase:
     return ch.say(P.PANEL_ANCHOR_ID, id=_ids(anchor, "Dw_loc2"), plainnoun=ch.say(P.PANEL_NOUNS_PLAIN))
 
 
+def _relative_phrase(ch: P.Chooser, bank: list[str], noun_slot: str, noun: Phrase, ref, tag: str, anchor) -> Phrase:
+    """ "the panel second to the right of 500310": a noun, a tagged direction with its count, an anchor.
+
+    Templates that already say "to the" take a bare direction word when the count is one.
+    """
+    template = ch.template(bank)
+    direction = P.direction_phrase(ch, ref.direction, ref.count, tag)
+    if "to the {dir}" in template:
+        if ref.count != 1:
+            template = "the {%s} {dir} of {anchor}" % noun_slot
+        else:
+            direction = tagged(ref.direction, tag)
+    return parse(template, **{noun_slot: noun}, dir=direction, anchor=anchor())
+
+
 def target_phrase(ch: P.Chooser, ref: TargetRef) -> Phrase:
     """A noun phrase for the target panel: "the full-size drywall"."""
     noun = ch.say(P.PANEL_NOUNS)
@@ -348,14 +363,7 @@ def target_phrase(ch: P.Chooser, ref: TargetRef) -> Phrase:
     if ref.kind == "absolute":
         return ch.say(P.TARGET_ABSOLUTE[ref.stack], noun=noun)
     if ref.kind == "relative":
-        template = ch.template(P.TARGET_RELATIVE)
-        direction = P.direction_phrase(ch, ref.direction, ref.count, "Dw_loc1")
-        if "to the {dir}" in template:
-            if ref.count != 1:
-                template = "the {noun} {dir} of {anchor}"
-            else:
-                direction = tagged(ref.direction, "Dw_loc1")
-        return parse(template, noun=noun, dir=direction, anchor=_panel_anchor(ch, ref.anchor))
+        return _relative_phrase(ch, P.TARGET_RELATIVE, "noun", noun, ref, "Dw_loc1", lambda: _panel_anchor(ch, ref.anchor))
     if ref.kind == "none":
         return ch.say(P.TARGET_UNDETERMINED, noun=noun)
     raise ValueError(ref)
@@ -405,14 +413,7 @@ def stud_phrase(ch: P.Chooser, ref: StudRef) -> Phrase:
     if ref.kind == "same":
         return ch.say(P.STUD_SAME, stud=stud)
     if ref.kind == "relative":
-        template = ch.template(P.STUD_RELATIVE)
-        direction = P.direction_phrase(ch, ref.direction, ref.count, "St_loc1")
-        if "to the {dir}" in template:
-            if ref.count != 1:
-                template = "the {stud} {dir} of {anchor}"
-            else:
-                direction = tagged(ref.direction, "St_loc1")
-        return parse(template, stud=stud, dir=direction, anchor=_stud_anchor(ch, ref.anchor))
+        return _relative_phrase(ch, P.STUD_RELATIVE, "stud", stud, ref, "St_loc1", lambda: _stud_anchor(ch, ref.anchor))
     if ref.kind == "none":
         return ch.say(P.STUD_UNDETERMINED)
     raise ValueError(ref)

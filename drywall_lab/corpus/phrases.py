@@ -182,9 +182,10 @@ PANEL_ANCHOR_PREVIOUS = [
 TARGET_UNDETERMINED = ["the {noun}", "a {noun}", "that {noun}", "one of the {noun}", "~the next {noun}"]
 
 # --- the destination stud -------------------------------------------------------------
-STUD_BY_ID = ["stud {id}", "the stud {id}", "stud number {id}", "the stud number {id}", "{id}", "the stud with id {id}",
-              "~stud id {id}", "~the stud tagged {id}"]
-STUD_ID_SENTENCE = ["the stud is {id} .", "the stud number is {id} .", "use stud {id} .", "~the id of the stud is {id} ."]
+STUD_BY_ID = ["stud/@D {id}", "the stud/@D {id}", "stud/@D number {id}", "the stud/@D number {id}", "{id}",
+              "the stud/@D with id {id}", "~stud/@D id {id}", "~the stud/@D tagged {id}"]
+STUD_ID_SENTENCE = ["the stud/@D is {id} .", "the stud/@D number is {id} .", "use stud/@D {id} .",
+                    "~the id of the stud/@D is {id} ."]
 STUD_ABSOLUTE = {
     "leftmost": ["the leftmost/St_loc1 {stud}", "the most/St_loc1 left/St_loc1 {stud}", "the first/St_loc1 {stud}",
                  "the {stud} on the far/St_loc1 left/St_loc1", "the very/St_loc1 first/St_loc1 {stud}",
@@ -206,7 +207,7 @@ STUD_RELATIVE = [
     "the {stud} to the {dir} of {anchor}", "~the {stud} sitting {dir} of {anchor}",
 ]
 STUD_RELATIVE_SENTENCE = ["the stud/@D is {dir} of {anchor} .", "the stud/@D is laying {dir} from {anchor} .",
-                          "it goes {dir} of {anchor} .", "~the stud/@D you want is {dir} of {anchor} ."]
+                          "it/@T goes {dir} of {anchor} .", "~the stud/@D you want is {dir} of {anchor} ."]
 STUD_SAME = ["the same/St_loc1 {stud} as the previous/St_loc2 one", "the same/St_loc1 {stud} as last/St_loc2 time/St_loc2",
              "the same/St_loc1 {stud} you just/St_loc2 used/St_loc2", "~that same/St_loc1 {stud} from before/St_loc2"]
 STUD_ANCHOR_ID = ["stud {id}", "the stud {id}", "{id}", "~stud number {id}"]
@@ -221,7 +222,7 @@ STUD_ANCHOR_PREVIOUS = ["the previous/St_loc2 stud", "the previous/St_loc2 one",
                         "the stud you used last/St_loc2 time/St_loc2", "the one you just/St_loc2 used/St_loc2",
                         "the previously/St_loc2 used/St_loc2 stud",
                         "~the stud from the previous/St_loc2 step"]
-STUD_SENTENCE = ["the stud is {d} .", "use {d} .", "it goes on {d} .", "~the target stud is {d} ."]
+STUD_SENTENCE = ["the stud/@D is {d} .", "use {d} .", "it/@T goes on {d} .", "~the target stud/@D is {d} ."]
 STUD_UNDETERMINED = ["the stud", "a stud", "that stud", "the wall", "~the frame"]
 
 # --- placement ------------------------------------------------------------------------

@@ -6,6 +6,8 @@ BIN := $(VENV)/bin
 # mode unless told otherwise: `make test DRYWALL_FAST=0` executes the notebooks in full.
 DRYWALL_FAST ?= 1
 export DRYWALL_FAST
+# JupyterLab refuses to run as root unless told (containers, CI machines).
+LAB_ARGS ?= $(if $(filter 0,$(shell id -u)),--allow-root,)
 
 .PHONY: setup lab demo test corpus clean
 
@@ -18,7 +20,7 @@ $(BIN)/.installed: environment.txt pyproject.toml
 setup: $(BIN)/.installed  ## create .venv and install environment.txt
 
 lab: setup  ## open the course (notebooks/) in JupyterLab
-	$(BIN)/jupyter lab notebooks/
+	$(BIN)/jupyter lab $(LAB_ARGS) notebooks/
 
 demo: setup  ## headless: the course's main results printed in the terminal
 	$(BIN)/python -m drywall_lab demo

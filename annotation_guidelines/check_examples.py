@@ -18,9 +18,10 @@ import sys
 from pathlib import Path
 
 from drywall_lab.corpus import COREF_TAGS, read_corpus
+from drywall_lab.site import default_site
 
 README = Path(__file__).resolve().parent / "README.md"
-SITE_IDS = {f"5001{i:02d}" for i in range(13)} | {f"5003{s}{k}" for s in "012" for k in "012"}
+SITE_IDS = set(default_site().stud_ids) | set(default_site().panel_ids)
 
 
 def examples(text: str):

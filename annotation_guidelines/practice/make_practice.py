@@ -19,10 +19,10 @@ from pathlib import Path
 
 from drywall_lab.annotation import score_annotator
 from drywall_lab.corpus import TAGS, from_conll, read_split, to_conll, tokenize
+from drywall_lab.corpus.phrases import NUMBER_WORDS as PHRASE_NUMBER_WORDS
 
 HERE = Path(__file__).resolve().parent
-NUMBER_WORDS = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
-                "nine": 9, "ten": 10, "twelve": 12}
+NUMBER_WORDS = {word: n for n, word in PHRASE_NUMBER_WORDS.items()}  # "four" -> 4
 
 
 def _token_ok(word: str, tag: str, pattern: str) -> bool:

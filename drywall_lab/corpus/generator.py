@@ -331,6 +331,7 @@ def _relative_phrase(ch: P.Chooser, bank: list[str], noun_slot: str, noun: Phras
     """ "the panel second to the right of 500310": a noun, a tagged direction with its count, an anchor.
 
     Templates that already say "to the" take a bare direction word when the count is one.
+    ``anchor`` is a callable, drawn last, so the random draws keep the order the corpus was made with.
     """
     template = ch.template(bank)
     direction = P.direction_phrase(ch, ref.direction, ref.count, tag)

@@ -69,6 +69,63 @@ def _cmd_demo(args: argparse.Namespace) -> int:
     return 0
 
 
+def _tagged_words(args: argparse.Namespace) -> tuple[list[str], list[str]]:
+    """The instruction's words and tags: from the markup (``--tagged``) or from a tagger."""
+    from drywall_lab.corpus import tokenize
+    from drywall_lab.corpus.markup import parse
+
+    if args.tagged:
+        tokens = [t for t in parse(args.text.replace(",", " , ").replace(".", " . ")) if t.is_word]
+        return [t.word for t in tokens], [t.tag for t in tokens]
+    from drywall_lab.pipeline import load_tagger_option
+
+    words = tokenize(args.text)
+    return words, load_tagger_option(args.tagger).predict([words])[0]
+
+
+def _cmd_interpret(args: argparse.Namespace) -> int:
+    """One instruction through NLU and IM: words and tags, the rule trace, the command or refusal."""
+    from drywall_lab.im import ActionHistory, interpret
+
+    history = ActionHistory()
+    if args.history and Path(args.history).exists():
+        history = ActionHistory.from_csv(args.history)
+    words, tags = _tagged_words(args)
+    result = interpret(words, tags, history)
+    print("words and tags:")
+    print("  " + " ".join(w if t == "O" else f"{w}/{t}" for w, t in zip(words, tags)))
+    print(f"rule trace (history: {len(history)} accepted command(s) before this one):")
+    for line in str(result.trace).splitlines():
+        print("  " + line)
+    if result.command is None:
+        print(f"refused ({result.refusal.reason}): {result.refusal.message}")
+        print("the action history is unchanged")
+        return 1
+    print(f"command: {result.command}")
+    print("new action history row:")
+    import pandas as pd
+
+    print(pd.DataFrame([result.history_row]).to_string(index=False))
+    if args.history and args.record:
+        history.record(result.command)
+        history.to_csv(args.history)
+        print(f"recorded: {args.history} now has {len(history)} row(s)")
+    return 0
+
+
+def _cmd_run(args: argparse.Namespace) -> int:
+    """The batch contract of spec section 6: JSON lines in, one JSON line per instruction out."""
+    import json
+
+    from drywall_lab.pipeline import load_tagger_option, read_episodes, run_episodes
+
+    episodes = read_episodes(args.episodes)
+    tagger = load_tagger_option(args.tagger)
+    for record in run_episodes(episodes, tagger):
+        sys.stdout.write(json.dumps(record, ensure_ascii=False) + "\n")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     from drywall_lab.corpus import CORPUS_DIR, SEED
 
@@ -87,6 +144,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("gold")
     p.add_argument("answer")
     p.set_defaults(func=_cmd_score)
+
+    p = sub.add_parser("interpret", help="one instruction: tags, the information-mapping rule trace, the command")
+    p.add_argument("text", help='the instruction, e.g. "Pick up the full-size drywall and put it on stud 500100"')
+    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
+    p.add_argument("--tagged", action="store_true",
+                   help='TEXT is already tagged, word/TAG for tagged words: "the full-size/dim drywall on stud 500100/ID_stud"')
+    p.add_argument("--history", default=None, help="an action history CSV to start from (missing: empty history)")
+    p.add_argument("--record", action="store_true", help="append an accepted command to the --history CSV")
+    p.set_defaults(func=_cmd_interpret)
+
+    p = sub.add_parser("run", help="episodes (JSON lines) through NLU and IM; one JSON line per instruction (spec section 6)")
+    p.add_argument("episodes", help='a JSON-lines file, one {"id": ..., "instructions": [...]} per line')
+    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
+    p.set_defaults(func=_cmd_run)
 
     p = sub.add_parser("demo", help="headless walk-through of the course material")
     p.set_defaults(func=_cmd_demo)

@@ -65,3 +65,16 @@ def plot_tag_shares(table: pd.DataFrame, ax: plt.Axes | None = None) -> plt.Axes
     ax.set_ylabel("% of all words")
     ax.set_title("Words per tag: generated corpus against the paper")
     return ax
+
+
+def draw_wall_steps(states: list[SiteState], titles: list[str], ncols: int = 2, width: float = 13.0) -> plt.Figure:
+    """One elevation per state, in a grid: how the wall grows step by step (the paper's Figs. 16-18)."""
+    nrows = max(1, -(-len(states) // ncols))
+    fig, axes = plt.subplots(nrows, ncols, figsize=(width, 2.9 * nrows), squeeze=False)
+    for ax, state, title in zip(axes.flat, states, titles):
+        draw_wall(state, ax, title)
+        ax.set_xlabel("")
+    for ax in list(axes.flat)[len(states):]:
+        ax.axis("off")
+    fig.tight_layout()
+    return fig

@@ -27,6 +27,11 @@ WALL_HEIGHT = 2.4384  #: H, the studs' height (8 ft)
 STUD_HALF_WIDTH = 0.01905  #: half of a stud's 1.5 in width
 STACK_NAMES = ("left", "middle", "right")  #: stacks from left to right
 TOLERANCE = 1e-6  #: metres; touching edges are not an overlap
+#: Where the stacks lie, across the floor from the wall (y of their centre line). The spec
+#: puts them "on the far side of the robot" without a number; 2.6 m leaves room for a robot
+#: on a rail at y of about 1.1 m between the wall and the 2.44 m long sheets, which lie
+#: with their length along y and their width along x.
+STACK_Y = 2.6
 
 DATA_DIR = Path(__file__).resolve().parent.parent / "data"
 
@@ -42,6 +47,16 @@ class Placement(str, Enum):
     @property
     def vertical(self) -> bool:
         return self in (Placement.VERTICAL_LEFT, Placement.VERTICAL_MIDDLE)
+
+    @property
+    def described(self) -> str:
+        """In a worker's words: "vertically on the stud's centre line"."""
+        return {
+            "vertical_left": "vertically on the stud's left line",
+            "vertical_middle": "vertically on the stud's centre line",
+            "horizontal_top": "horizontally in the top row",
+            "horizontal_bottom": "horizontally in the bottom row",
+        }[self.value]
 
 
 @dataclass(frozen=True)
@@ -99,6 +114,24 @@ class Rect:
             min(self.x_right, other.x_right) - max(self.x_left, other.x_left) > TOLERANCE
             and min(self.z_top, other.z_top) - max(self.z_bottom, other.z_bottom) > TOLERANCE
         )
+
+
+@dataclass(frozen=True)
+class Pose:
+    """Where a panel's centre is and how it is turned: quaternion (w, x, y, z), MuJoCo's order.
+
+    The panel's own axes: x along its width, y through its thickness, z along its
+    length. The identity is a panel standing upright against the wall.
+    """
+
+    position: tuple[float, float, float]
+    quaternion: tuple[float, float, float, float]
+
+
+_HALF = 0.5**0.5
+UPRIGHT = (1.0, 0.0, 0.0, 0.0)  #: vertical placements: length up, width along the wall
+ON_ITS_SIDE = (_HALF, 0.0, _HALF, 0.0)  #: horizontal placements: a quarter turn about y, length along the wall
+LYING_FLAT = (_HALF, _HALF, 0.0, 0.0)  #: in a stack: a quarter turn about x, length along y, thickness up
 
 
 @dataclass(frozen=True)
@@ -211,6 +244,25 @@ class Site:
             return Rect(x_left, x_left + panel.l, WALL_HEIGHT - panel.w, WALL_HEIGHT)
         return Rect(x_left, x_left + panel.l, 0.0, panel.w)
 
+    @property
+    def wall_face_y(self) -> float:
+        """The y of the studs' face that panels are fixed to (the side the robot works from)."""
+        return self.studs[0].depth / 2
+
+    def pick_pose(self, panel: Panel | str) -> Pose:
+        """The centre of ``panel`` lying in its stack (it is on top when it is picked)."""
+        panel = panel if isinstance(panel, Panel) else self.panel(panel)
+        z = (panel.level + 0.5) * panel.thickness
+        return Pose((panel.stack_x, STACK_Y, z), LYING_FLAT)
+
+    def place_pose(self, panel: Panel | str, stud: Stud | str, placement: Placement | str) -> Pose:
+        """The centre of ``panel`` installed on ``stud``: against the studs' face, over ``rect()``."""
+        panel = panel if isinstance(panel, Panel) else self.panel(panel)
+        r = self.rect(panel, stud, placement)
+        y = self.wall_face_y + panel.thickness / 2
+        turn = UPRIGHT if Placement(placement).vertical else ON_ITS_SIDE
+        return Pose(((r.x_left + r.x_right) / 2, y, (r.z_bottom + r.z_top) / 2), turn)
+
     def fresh(self) -> "SiteState":
         """The site before anything is installed."""
         return SiteState(self, {k: tuple(v) for k, v in self.stacks.items()}, ())
@@ -286,15 +338,15 @@ class SiteState:
         if rect.x_right > self.site.wall_end_x + TOLERANCE:
             raise Refusal(
                 "past_wall_end",
-                f"Panel {panel.drywall_id} placed {placement.value.replace('_', ' ')} on stud {stud.stud_id} "
-                f"would end at x = {rect.x_right:.3f} m, past the last stud ({self.site.wall_end_x:.3f} m).",
+                f"Panel {panel.drywall_id} on stud {stud.stud_id}, {placement.described}, would end at "
+                f"x = {rect.x_right:.3f} m, past the wall's last stud ({self.site.wall_end_x:.3f} m).",
             )
         for other in self.installed:
             if rect.overlaps(other.rect):
                 raise Refusal(
                     "overlap",
-                    f"Panel {panel.drywall_id} placed {placement.value.replace('_', ' ')} on stud {stud.stud_id} "
-                    f"would overlap panel {other.drywall_id}, already installed on stud {other.stud_id}.",
+                    f"Panel {panel.drywall_id} on stud {stud.stud_id}, {placement.described}, would overlap "
+                    f"panel {other.drywall_id}, already installed on stud {other.stud_id}.",
                 )
         return rect
 

@@ -1,0 +1,154 @@
+"""What the rules look at and what they decide: the tagged instruction and the rule trace."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable, Sequence
+
+import pandas as pd
+
+from drywall_lab.corpus.tags import COREF_TAGS
+from drywall_lab.errors import Refusal
+
+
+_LEAD_IN = frozenset({"the", "a", "an", "is", "of", "that", "with", "width", "length", "size", "stud", "panel",
+                      "on", "to", "from", "at", "in"})
+_UNITS = frozenset({"foot", "feet", "ft", "long", "wide", "across", "by", "tall", "stud", "stack"})
+
+
+@dataclass(frozen=True)
+class TaggedInstruction:
+    """An instruction's words with one tag each, as the NLU module gives them.
+
+    The co-reference tags ``Trg`` and ``Dst`` (the paper's Table 5 variant) are
+    accepted and read as ``O``: the rules use only the 13 tags of spec section 2.
+    """
+
+    words: tuple[str, ...]
+    tags: tuple[str, ...]
+
+    def __init__(self, words: Sequence[str], tags: Sequence[str]) -> None:
+        words, tags = tuple(str(w) for w in words), tuple(str(t) for t in tags)
+        if len(words) != len(tags):
+            raise ValueError(f"{len(words)} words but {len(tags)} tags: every word needs exactly one tag")
+        unknown = sorted(set(tags) - set(COREF_TAGS))
+        if unknown:
+            raise ValueError(f"unknown tag(s) {', '.join(unknown)}; the tags are {', '.join(COREF_TAGS)}")
+        object.__setattr__(self, "words", words)
+        object.__setattr__(self, "tags", tags)
+
+    def indices(self, *tags: str) -> list[int]:
+        return [i for i, t in enumerate(self.tags) if t in tags]
+
+    def words_with(self, *tags: str) -> list[str]:
+        """The words carrying any of ``tags``, in order."""
+        return [self.words[i] for i in self.indices(*tags)]
+
+    def has(self, *tags: str) -> bool:
+        return any(t in tags for t in self.tags)
+
+    def phrase(self, *tags: str) -> list[str]:
+        """The tagged words with the few words around them that make them readable, to quote back.
+
+        ``phrase("length")`` on "take the panel with a length of 8 feet" gives
+        ["a", "length", "of", "8", "feet"]: lead-in words ("the", "is", "of", "that",
+        "width", ...) before the first tagged word and units ("feet", "long") after the last.
+        """
+        idx = self.indices(*tags)
+        if not idx:
+            return []
+        start, end = idx[0], idx[-1] + 1
+        while start > 0 and idx[0] - start < 4 and self.words[start - 1].lower() in _LEAD_IN:
+            start -= 1
+        while end < len(self.words) and end - idx[-1] <= 2 and self.words[end].lower() in _UNITS:
+            end += 1
+        return list(self.words[start:end])
+
+    def __str__(self) -> str:
+        return " ".join(w if t == "O" else f"{w}/{t}" for w, t in zip(self.words, self.tags))
+
+
+@dataclass(frozen=True)
+class Decision:
+    """What a rule concluded: a panel id (target rules) or a stud id (destination rules), and why."""
+
+    value: str
+    conclusion: str
+
+
+@dataclass(frozen=True)
+class TraceStep:
+    """One rule's decision: which words and tags it used and what it concluded."""
+
+    stage: str  # target | destination | placement | check
+    rule: str
+    applies: bool
+    words: tuple[str, ...] = ()
+    tags: tuple[str, ...] = ()
+    conclusion: str = ""
+
+
+@dataclass
+class Trace:
+    """Every rule consulted for one instruction, in order, including the ones that did not apply."""
+
+    steps: list[TraceStep] = field(default_factory=list)
+
+    def add(self, stage: str, rule: str, applies: bool, ti: TaggedInstruction | None = None,
+            tags: Sequence[str] = (), conclusion: str = "") -> TraceStep:
+        words: tuple[str, ...] = ()
+        used: tuple[str, ...] = ()
+        if ti is not None and tags:
+            idx = ti.indices(*tags)
+            words = tuple(ti.words[i] for i in idx)
+            used = tuple(ti.tags[i] for i in idx)
+        step = TraceStep(stage, rule, applies, words, used, conclusion)
+        self.steps.append(step)
+        return step
+
+    def to_frame(self) -> pd.DataFrame:
+        """The trace as a table: stage, rule, applies, words, tags, conclusion."""
+        return pd.DataFrame(
+            [
+                {"stage": s.stage, "rule": s.rule, "applies": s.applies, "words": " ".join(s.words),
+                 "tags": " ".join(s.tags), "conclusion": s.conclusion}
+                for s in self.steps
+            ],
+            columns=["stage", "rule", "applies", "words", "tags", "conclusion"],
+        )
+
+    def __iter__(self):
+        return iter(self.steps)
+
+    def __len__(self) -> int:
+        return len(self.steps)
+
+    def __str__(self) -> str:
+        lines = []
+        for s in self.steps:
+            mark = "->" if s.applies else "  "
+            used = " ".join(f"{w}/{t}" for w, t in zip(s.words, s.tags))
+            lines.append(f"{mark} [{s.stage}] {s.rule}: {s.conclusion}" + (f"  ({used})" if used else ""))
+        return "\n".join(lines)
+
+
+Rule = tuple[str, tuple[str, ...], Callable[[TaggedInstruction, Any], "Decision | None"]]
+
+
+def first_decision(stage: str, rules: Sequence[Rule], ti: TaggedInstruction, ctx: Any, trace: Trace) -> Decision | None:
+    """Try ``rules`` (name, tags it reads, function) in order and record each in ``trace``.
+
+    Returns the first rule's decision; ``None`` when no rule applies. A rule's
+    ``Refusal`` is recorded and raised again.
+    """
+    for name, tags, rule in rules:
+        try:
+            decision = rule(ti, ctx)
+        except Refusal as refusal:
+            trace.add(stage, name, True, ti, tags, f"refused ({refusal.reason}): {refusal.message}")
+            raise
+        if decision is None:
+            trace.add(stage, name, False, ti, tags, "does not apply")
+            continue
+        trace.add(stage, name, True, ti, tags, decision.conclusion)
+        return decision
+    return None

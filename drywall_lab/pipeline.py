@@ -1,0 +1,122 @@
+"""Instructions to commands: the NLU tagger, then the IM rules, episode by episode (the paper's Fig. 1).
+
+This is the batch contract of spec section 6 (``python -m drywall_lab run``): each
+episode starts from the fresh site; a refused instruction leaves the state as it was
+and the episode goes on; one JSON record per instruction.
+
+It also holds the paper's three demonstration layouts (Figs. 15-18), written as
+episodes with hand-checked tags and the commands they must give
+(``data/layouts/paper_layouts.jsonl``).
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Iterable, Iterator, Mapping, Protocol, Sequence
+
+from drywall_lab.corpus.io import tokenize
+from drywall_lab.corpus.markup import parse
+from drywall_lab.im import ActionHistory, InformationMapper, Interpretation
+from drywall_lab.site import DATA_DIR, Site
+
+LAYOUTS_PATH = DATA_DIR / "layouts" / "paper_layouts.jsonl"
+
+
+class WordTagger(Protocol):
+    """Anything that tags word lists: the project's taggers (``drywall_lab.nlu``)."""
+
+    def predict(self, sentences: Sequence[Sequence[str]]) -> list[list[str]]: ...
+
+
+def load_tagger_option(option: str | Path | None) -> WordTagger:
+    """The tagger a ``--tagger`` option names: a saved tagger's directory; the default tagger when None."""
+    from drywall_lab import nlu
+
+    return nlu.default_tagger() if option is None else nlu.load_tagger(option)
+
+
+# --- episodes ---------------------------------------------------------------------------------
+def parse_episode(obj: object, where: str = "episode") -> dict:
+    """Check one episode ``{"id": ..., "instructions": [...]}``; a ``ValueError`` saying what is wrong.
+
+    The id may be a string or a number (it is written back as given); extra keys are kept.
+    """
+    if not isinstance(obj, dict):
+        raise ValueError(f"{where}: an episode must be a JSON object with \"id\" and \"instructions\", "
+                         f"not {type(obj).__name__}")
+    missing = [k for k in ("id", "instructions") if k not in obj]
+    if missing:
+        raise ValueError(f"{where}: the episode has no {' or '.join(repr(k) for k in missing)}")
+    if not isinstance(obj["id"], (str, int)) or isinstance(obj["id"], bool):
+        raise ValueError(f"{where}: the episode id must be a string or a number, not {obj['id']!r}")
+    instructions = obj["instructions"]
+    if not isinstance(instructions, list) or not all(isinstance(i, str) for i in instructions):
+        raise ValueError(f"{where}: \"instructions\" must be a list of strings")
+    return obj
+
+
+def read_episodes(path: Path | str) -> list[dict]:
+    """Episodes from a JSON-lines file, one per line; blank lines are skipped; errors name the line."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no episodes file at {path}")
+    episodes = []
+    with path.open(encoding="utf-8") as f:
+        for number, line in enumerate(f, start=1):
+            if not line.strip():
+                continue
+            try:
+                obj = json.loads(line)
+            except json.JSONDecodeError as e:
+                raise ValueError(f"{path}, line {number}: not a JSON object ({e.msg})") from None
+            episodes.append(parse_episode(obj, f"{path}, line {number}"))
+    return episodes
+
+
+def contract_record(episode_id: str | int, step: int, result: Interpretation) -> dict:
+    """One output line of ``run`` (spec section 6)."""
+    return {
+        "episode": episode_id,
+        "step": step,
+        "words": list(result.words),
+        "tags": list(result.tags),
+        "command": result.command.as_contract() if result.command else None,
+        "refusal": None if result.command else result.refusal.message,
+    }
+
+
+def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None) -> list[Interpretation]:
+    """Tag every instruction of the episode (one batch), then map them in order on a fresh site."""
+    words = [tokenize(text) for text in episode["instructions"]]
+    tags = tagger.predict(words) if words else []
+    mapper = InformationMapper(site)
+    return [mapper.apply(w, t) for w, t in zip(words, tags)]
+
+
+def run_episodes(episodes: Iterable[Mapping], tagger: WordTagger, site: Site | None = None) -> Iterator[dict]:
+    """The ``run`` output records, episode after episode."""
+    for episode in episodes:
+        for step, result in enumerate(run_episode(episode, tagger, site)):
+            yield contract_record(episode["id"], step, result)
+
+
+# --- the paper's layouts ---------------------------------------------------------------------------
+def paper_layouts(path: Path | str = LAYOUTS_PATH) -> list[dict]:
+    """The three layouts of Figs. 15-18 as episodes, with gold ``words``/``tags`` and ``expected`` outcomes.
+
+    Each step's ``expected`` is a command ``{"drywall_id", "stud_id", "placement"}`` or
+    ``{"refusal": reason}``.
+    """
+    layouts = read_episodes(path)
+    for layout in layouts:
+        tokens = [[t for t in parse(markup) if t.is_word] for markup in layout["tagged"]]
+        layout["words"] = [[t.word for t in ts] for ts in tokens]
+        layout["tags"] = [[t.tag for t in ts] for ts in tokens]
+    return layouts
+
+
+def map_gold_episode(layout: Mapping, site: Site | None = None) -> tuple[list[Interpretation], ActionHistory]:
+    """Map a layout's gold-tagged instructions in order: the IM on its own, no tagger."""
+    mapper = InformationMapper(site)
+    results = [mapper.apply(w, t) for w, t in zip(layout["words"], layout["tags"])]
+    return results, mapper.history

@@ -1,0 +1,139 @@
+"""Instructions to commands, episode by episode (drywall_lab/pipeline.py): the batch contract of
+spec section 6 and the paper's three layouts (Figs. 15-18)."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from drywall_lab.corpus import tokenize
+from drywall_lab.pipeline import (
+    map_gold_episode,
+    paper_layouts,
+    parse_episode,
+    read_episodes,
+    run_episode,
+    run_episodes,
+)
+
+SPACING, HALF, FT = 0.4064, 0.01905, 0.3048
+
+
+class GoldTagger:
+    """Tags instructions it knows with their hand-checked tags (the layouts' ``tagged`` field)."""
+
+    def __init__(self, layouts):
+        self.known = {tuple(w): t for layout in layouts for w, t in zip(layout["words"], layout["tags"])}
+
+    def predict(self, sentences):
+        return [list(self.known.get(tuple(s), ["O"] * len(s))) for s in sentences]
+
+
+@pytest.fixture(scope="module")
+def layouts():
+    return paper_layouts()
+
+
+def test_layout_text_and_markup_agree(layouts):
+    assert [layout["id"] for layout in layouts] == ["layout1", "layout2", "layout3"]
+    for layout in layouts:
+        assert len(layout["instructions"]) == len(layout["tagged"]) == len(layout["expected"])
+        assert [tokenize(text) for text in layout["instructions"]] == layout["words"]
+
+
+def test_layouts_give_their_expected_commands(layouts):
+    for layout in layouts:
+        results, history = map_gold_episode(layout)
+        got = [r.command.as_contract() if r.command else {"refusal": r.refusal.reason} for r in results]
+        assert got == layout["expected"], layout["id"]
+        assert len(history) == sum("refusal" not in e for e in layout["expected"])
+
+
+def test_layout1_history_table_is_the_papers(layouts):
+    """Fig. 16: panel 500320 on stud 500100 at the stud's left line, then three more, all vertical."""
+    _, history = map_gold_episode(layouts[0])
+    rows = history.frame.to_dict("records")
+    assert [r["drywall_id"] for r in rows] == ["500320", "500322", "500310", "500321"]
+    assert [r["stud_id"] for r in rows] == ["500100", "500103", "500107", "500110"]
+    assert {r["ver_hor"] for r in rows} == {"vertical"}
+    assert [r["left_cent"] for r in rows] == ["left", "center", "center", "center"]
+    assert rows[0]["installed_x_left"] == pytest.approx(-HALF)
+    assert rows[0]["installed_x_right"] == pytest.approx(-HALF + 4 * FT)
+    assert rows[2]["installed_x_left"] == pytest.approx(7 * SPACING)  # "second to the left of 500109"
+    assert rows[3]["installed_x_right"] == pytest.approx(10 * SPACING + 2 * FT)
+
+
+def test_layout2_is_two_rows_of_horizontal_panels(layouts):
+    _, history = map_gold_episode(layouts[1])
+    rows = history.frame.to_dict("records")
+    assert [r["top_btm"] for r in rows] == ["bottom", "bottom", "top", "top"]
+    assert rows[1]["installed_x_left"] == pytest.approx(rows[0]["installed_x_right"])  # butted, not overlapping
+    assert max(r["installed_x_right"] for r in rows) <= 12 * SPACING + HALF
+
+
+def test_refused_step_changes_nothing(layouts):
+    layout = layouts[2]
+    results, history = map_gold_episode(layout)
+    refused = [i for i, e in enumerate(layout["expected"]) if "refusal" in e]
+    assert refused == [2]
+    assert "500301 is under 500311" in results[2].refusal.message
+    # the step after the refusal counts from the last *accepted* command's stud (500102 -> 500105)
+    assert results[3].command.stud_id == "500105"
+
+
+def test_run_output_follows_the_contract(layouts):
+    records = list(run_episodes(layouts, GoldTagger(layouts)))
+    assert len(records) == sum(len(layout["instructions"]) for layout in layouts)
+    for record in records:
+        assert set(record) == {"episode", "step", "words", "tags", "command", "refusal"}
+        assert (record["command"] is None) != (record["refusal"] is None)
+        if record["command"] is not None:
+            assert set(record["command"]) == {"drywall_id", "stud_id", "placement"}
+        else:
+            assert isinstance(record["refusal"], str) and record["refusal"]
+        json.dumps(record)
+    steps = {}
+    for record in records:
+        steps.setdefault(record["episode"], []).append(record["step"])
+    assert all(s == list(range(len(s))) for s in steps.values())
+    first = records[0]
+    assert first["episode"] == "layout1" and first["step"] == 0
+    assert first["command"] == {"drywall_id": "500320", "stud_id": "500100", "placement": "vertical_left"}
+
+
+def test_each_episode_starts_from_the_fresh_site(layouts):
+    tagger = GoldTagger(layouts)
+    once = list(run_episodes([layouts[0]], tagger))
+    twice = list(run_episodes([layouts[0], {**layouts[0], "id": "again"}], tagger))
+    assert [r["command"] for r in twice[len(once):]] == [r["command"] for r in once]
+
+
+def test_empty_and_garbled_instructions_are_refused(layouts):
+    results = run_episode({"id": "e", "instructions": ["", "   ", "%%% ### !!!", "asdf qwer"]}, GoldTagger(layouts))
+    assert all(r.refusal is not None and r.refusal.reason == "undetermined" for r in results)
+
+
+@pytest.mark.parametrize("line, message", [
+    ("not json", "line 2: not a JSON object"),
+    ("[1, 2]", "line 2: an episode must be a JSON object"),
+    ('{"instructions": []}', "line 2: the episode has no 'id'"),
+    ('{"id": "a"}', "line 2: the episode has no 'instructions'"),
+    ('{"id": "a", "instructions": "put it there"}', "must be a list of strings"),
+    ('{"id": "a", "instructions": ["ok", 3]}', "must be a list of strings"),
+    ('{"id": null, "instructions": []}', "id must be a string or a number"),
+])
+def test_read_episodes_names_the_bad_line(tmp_path, line, message):
+    path = tmp_path / "episodes.jsonl"
+    path.write_text('{"id": "fine", "instructions": ["x"]}\n' + line + "\n")
+    with pytest.raises(ValueError) as info:
+        read_episodes(path)
+    assert message in str(info.value)
+
+
+def test_read_episodes_keeps_numbers_and_skips_blank_lines(tmp_path):
+    path = tmp_path / "episodes.jsonl"
+    path.write_text('\n{"id": 7, "instructions": ["a"], "note": "kept"}\n\n')
+    assert read_episodes(path) == [{"id": 7, "instructions": ["a"], "note": "kept"}]
+    with pytest.raises(FileNotFoundError):
+        read_episodes(tmp_path / "missing.jsonl")
+    assert parse_episode({"id": "x", "instructions": []}) == {"id": "x", "instructions": []}

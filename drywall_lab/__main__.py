@@ -41,11 +41,14 @@ def _cmd_score(args: argparse.Namespace) -> int:
 
 
 def _cmd_demo(args: argparse.Namespace) -> int:
-    """A headless walk through what is built so far: the site, the corpus, agreement."""
+    """A headless walk through the course: site, corpus, agreement, tagger, information mapping."""
     import pandas as pd
 
     from drywall_lab import corpus
     from drywall_lab.annotation import score_annotator
+    from drywall_lab.im import task_accuracy
+    from drywall_lab.nlu import default_tagger, score_tagging
+    from drywall_lab.pipeline import paper_layouts, run_episode
     from drywall_lab.site import default_site
 
     site = default_site()
@@ -66,6 +69,23 @@ def _cmd_demo(args: argparse.Namespace) -> int:
         answer = corpus.from_conll(practice / "student_answer.conll")
         print("\n== A student's practice annotation scored against the key ==")
         print(score_annotator([r["tags"] for r in key], [r["tags"] for r in answer]).summary())
+
+    tagger = default_tagger()
+    print(f"\n== The default tagger ({tagger.kind}, {tagger.n_parameters():,} parameters) on the test split ==")
+    test = rows["test"]
+    predicted = tagger.predict([r["words"] for r in test])
+    scores = score_tagging([r["tags"] for r in test], predicted)
+    print(f"acc_word={scores.acc_word:.4f} acc_inst={scores.acc_inst:.4f} "
+          f"acc_task={task_accuracy(test, predicted):.4f} n_instructions={scores.n_instructions}")
+
+    print("\n== The paper's layouts (Figs. 15-18): instruction -> tags -> command ==")
+    for layout in paper_layouts():
+        print(f"-- {layout['id']}: {layout['paper']}")
+        results = run_episode(layout, tagger)
+        for text, r in zip(layout["instructions"], results):
+            print(f"  {text}")
+            print("     " + " ".join(f"{w}/{t}" for w, t in zip(r.words, r.tags) if t != "O"))
+            print("     -> " + (str(r.command) if r.command else f"refused ({r.refusal.reason}): {r.refusal.message}"))
     return 0
 
 
@@ -144,6 +164,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("gold")
     p.add_argument("answer")
     p.set_defaults(func=_cmd_score)
+
+    from drywall_lab.nlu.cli import add_commands as add_tagger_commands
+
+    add_tagger_commands(sub)  # train, evaluate (drywall_lab/nlu/cli.py)
 
     p = sub.add_parser("interpret", help="one instruction: tags, the information-mapping rule trace, the command")
     p.add_argument("text", help='the instruction, e.g. "Pick up the full-size drywall and put it on stud 500100"')

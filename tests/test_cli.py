@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import filecmp
+import json
 import subprocess
 import sys
 
@@ -96,3 +97,57 @@ def test_run_with_a_missing_or_bad_file(tmp_path, capsys):
     bad.write_text('{"id": "a", "instructions": ["x"]}\n{"id": "b"}\n')
     assert main(["run", str(bad)]) == 2
     assert "line 2" in capsys.readouterr().err
+
+
+def test_run_with_the_default_tagger_follows_the_contract(tmp_path):
+    """Spec section 6, from outside: a subprocess, JSON lines in and out, the default tagger."""
+    episodes = tmp_path / "episodes.jsonl"
+    episodes.write_text(
+        json.dumps({"id": "e1", "instructions": [
+            "Pick up the full-size drywall and put it on stud 500100.",
+            "Take panel 500300 and put it on stud 500104.",
+            "Grab the panel that is two feet wide and put it on the stud three to the right of the previous stud.",
+            "",
+        ]}) + "\n" + json.dumps({"id": 2, "instructions": ["Put the 4 by 6 panel on stud 500112."]}) + "\n"
+    )
+    out = subprocess.run([sys.executable, "-m", "drywall_lab", "run", str(episodes)], capture_output=True, text=True,
+                         check=True).stdout
+    records = [json.loads(line) for line in out.splitlines()]
+    assert [(r["episode"], r["step"]) for r in records] == [("e1", 0), ("e1", 1), ("e1", 2), ("e1", 3), (2, 0)]
+    for r in records:
+        assert list(r) == ["episode", "step", "words", "tags", "command", "refusal"]
+        assert len(r["words"]) == len(r["tags"])
+    assert records[0]["command"] == {"drywall_id": "500320", "stud_id": "500100", "placement": "vertical_left"}
+    assert records[0]["tags"][records[0]["words"].index("500100")] == "ID_stud"
+    assert records[1]["command"] is None and "500300 is under 500310" in records[1]["refusal"]
+    # "previous" is the last accepted command (stud 500100), not the refused one
+    assert records[2]["command"] == {"drywall_id": "500321", "stud_id": "500103", "placement": "vertical_left"}
+    assert records[3]["words"] == [] and records[3]["command"] is None and "empty" in records[3]["refusal"]
+    assert records[4]["command"] is None and "past the wall's last stud" in records[4]["refusal"]
+
+
+def test_run_with_a_corrupt_tagger_directory(tmp_path, capsys):
+    episodes = tmp_path / "episodes.jsonl"
+    episodes.write_text('{"id": "a", "instructions": ["put it on stud 500100"]}\n')
+    broken = tmp_path / "tagger"
+    broken.mkdir()
+    (broken / "tagger.json").write_text("{not json")
+    assert main(["run", str(episodes), "--tagger", str(broken)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error:") and "tagger.json" in err
+
+
+def test_evaluate_reports_task_accuracy_through_the_rules(capsys):
+    """acc_task puts the tagger's tags through the IM rules: with tags that are all O, only the
+    instructions meant to be refused as undetermined come out right."""
+    from drywall_lab.im import task_accuracy
+
+    assert main(["evaluate", "--split", "validation"]) == 0
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    figures = dict(item.split("=") for item in last.split())
+    assert set(figures) == {"acc_word", "acc_inst", "n_instructions", "acc_task"}
+    # an instruction with every tag right gets its intended outcome (gold tags give 100%), so acc_task >= acc_inst
+    assert float(figures["acc_task"]) >= float(figures["acc_inst"])
+    rows = read_split("validation")
+    undetermined = sum(r["expected"]["refusal"] == "undetermined" for r in rows) / len(rows)
+    assert task_accuracy(rows, [["O"] * len(r["words"]) for r in rows]) == undetermined

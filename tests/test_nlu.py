@@ -1,0 +1,420 @@
+"""The two taggers, their metrics, saving/loading and commands (drywall_lab.nlu).
+
+Training here is small (a few hundred instructions, few epochs, small networks) so that
+the file runs in well under two minutes on two CPU cores; the thresholds are what such
+small models reach with the fixed seeds, with a margin.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import re
+
+import pandas as pd
+import pytest
+import torch
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from drywall_lab.corpus import read_split
+from drywall_lab.corpus.tags import COREF_TAGS, TAGS
+from drywall_lab.nlu import (
+    DEFAULT_TAGGER_DIR,
+    HISTORY_COLUMNS,
+    BertTagger,
+    BiLstmCrfTagger,
+    TaggerLoadError,
+    TaggerNotTrainedError,
+    acc_inst,
+    acc_word,
+    confusion_pairs,
+    count_instruction_errors,
+    count_word_errors,
+    default_tagger,
+    fallback_token,
+    load_tagger,
+    score_tagging,
+    split_into_pieces,
+    tag_error_table,
+    vote_word_tags,
+    word_key,
+)
+from drywall_lab.nlu.cli import add_commands, result_line
+
+N_TRAIN = 300
+_ID = re.compile(r"\d{6}")
+
+
+@pytest.fixture(scope="module", autouse=True)
+def two_threads():
+    """Train on at most two CPU threads (the course machines' cores); restore torch's setting after."""
+    before = torch.get_num_threads()
+    torch.set_num_threads(min(2, before))
+    yield
+    torch.set_num_threads(before)
+
+
+@pytest.fixture(scope="module")
+def train_rows() -> list[dict]:
+    return read_split("train")[:N_TRAIN]
+
+
+@pytest.fixture(scope="module")
+def validation_rows() -> list[dict]:
+    return read_split("validation")
+
+
+@pytest.fixture(scope="module")
+def small_lstm(train_rows, validation_rows) -> BiLstmCrfTagger:
+    # A small network at a higher learning rate than the paper's 1e-3, so that 12 epochs suffice.
+    tagger = BiLstmCrfTagger(embedding_dim=32, hidden_size=48, epochs=12, learning_rate=1e-2)
+    tagger.fit(train_rows, validation_rows, progress=False, seed=0)
+    return tagger
+
+
+@pytest.fixture(scope="module")
+def small_bert(train_rows, validation_rows) -> BertTagger:
+    # One epoch at a higher learning rate than the paper's 3e-5, so that it learns visibly.
+    tagger = BertTagger(learning_rate=3e-4)
+    tagger.fit(train_rows, validation_rows[:40], epochs=1, progress=False, seed=0)
+    return tagger
+
+
+def _with_unseen_ids(rows: list[dict]) -> list[dict]:
+    """The rows with every 6-digit id replaced by one that the corpus never uses."""
+    replacement = {"1": ["500113", "500199", "500150"], "3": ["500330", "500345", "500398"]}
+    out = []
+    for n, row in enumerate(rows):
+        words = [replacement.get(w[3], ["712345"])[n % 3] if _ID.fullmatch(w) else w for w in row["words"]]
+        out.append(dict(row, words=words))
+    return out
+
+
+# --- metrics (the paper's Table 3 and Table 4) ------------------------------------------------
+GOLD = [["O", "ID_wall", "O", "ID_stud"], ["O", "Vr_md", "Vr_md"], ["Dw_loc1", "O"]]
+PREDICTED = [["O", "ID_wall", "O", "ID_stud"], ["O", "Dw_loc1", "Vr_md"], ["St_loc1", "St_loc1"]]
+
+
+def test_metrics_on_a_hand_made_example() -> None:
+    assert count_word_errors(GOLD, PREDICTED) == 3  # N_w
+    assert count_instruction_errors(GOLD, PREDICTED) == 2  # N_l
+    assert acc_word(GOLD, PREDICTED) == pytest.approx(6 / 9)
+    assert acc_inst(GOLD, PREDICTED) == pytest.approx(1 / 3)
+    s = score_tagging(GOLD, PREDICTED)
+    assert (s.n_instructions, s.n_words, s.n_word_errors, s.n_instruction_errors) == (3, 9, 3, 2)
+    assert (s.acc_word, s.acc_inst) == (pytest.approx(6 / 9), pytest.approx(1 / 3))
+    assert acc_word(GOLD, GOLD) == acc_inst(GOLD, GOLD) == 1.0
+
+
+def test_the_papers_table_3_formula() -> None:
+    # LSTM-M1 on the paper's validation split: N_w = 2 of 3,895 words, N_l = 1 of 158.
+    gold = [["O"] * 25 for _ in range(103)] + [["O"] * 24 for _ in range(55)]
+    predicted = [list(t) for t in gold]
+    predicted[7][3] = predicted[7][4] = "St_loc1"
+    assert sum(map(len, gold)) == 3895
+    assert acc_word(gold, predicted) == pytest.approx((3895 - 2) / 3895)
+    assert acc_inst(gold, predicted) == pytest.approx((158 - 1) / 158)
+
+
+def test_tag_error_table_and_confusion_pairs() -> None:
+    table = tag_error_table(GOLD, PREDICTED)
+    assert list(table.columns) == ["words", "errors", "error_rate"]
+    assert list(table.index) == [*TAGS, "ALL"]
+    assert table.loc["O", ["words", "errors"]].tolist() == [4, 1]
+    assert table.loc["Vr_md", ["words", "errors"]].tolist() == [2, 1]
+    assert table.loc["Dw_loc1", "error_rate"] == 1.0
+    assert table.loc["ALL", ["words", "errors"]].tolist() == [9, 3]
+    assert pd.isna(table.loc["Hr_btm", "error_rate"])  # no such word in gold
+    pairs = confusion_pairs(GOLD, PREDICTED)
+    assert set(map(tuple, pairs.to_numpy().tolist())) == {
+        ("Vr_md", "Dw_loc1", 1), ("Dw_loc1", "St_loc1", 1), ("O", "St_loc1", 1)
+    }
+    assert confusion_pairs(GOLD, GOLD).empty
+
+
+def test_metrics_refuse_mismatched_or_empty_input() -> None:
+    with pytest.raises(ValueError, match="instruction 1"):
+        acc_word(GOLD, [PREDICTED[0], PREDICTED[1][:2], PREDICTED[2]])
+    with pytest.raises(ValueError, match="3 instructions"):
+        acc_inst(GOLD, PREDICTED[:2])
+    with pytest.raises(ValueError, match="no words"):
+        acc_word([], [])
+
+
+# --- BiLSTM-CRF -----------------------------------------------------------------------------------
+def test_word_keys_normalise_case_and_ids() -> None:
+    assert word_key("STUD") == word_key("stud") == "stud"
+    assert word_key("500113") == word_key("500199") == "<id:5001>"
+    assert word_key("500330") == "<id:5003>"
+    assert word_key("500330", id_prefix_digits=0) == "<id>"
+    assert [fallback_token(word_key(w)) for w in ("712345", "12", "9th", "gypsum")] == [
+        "<id>", "<num>", "<ordinal>", "<unk>"
+    ]
+
+
+def test_bilstm_crf_learns_the_tags(small_lstm, validation_rows) -> None:
+    history = small_lstm.history
+    assert list(history.columns) == list(HISTORY_COLUMNS)
+    assert history["epoch"].tolist() == list(range(1, 13))
+    assert history["train_acc_word"].iloc[-1] > history["train_acc_word"].iloc[0]
+    assert history["train_loss"].iloc[-1] < history["train_loss"].iloc[0]
+    assert (history["seconds"] > 0).all()
+    scores = small_lstm.evaluate(validation_rows)
+    assert scores.acc_word >= 0.99  # 0.9970 with seed 0
+    assert scores.acc_inst >= 0.85  # 0.9367 with seed 0
+    assert history["val_acc_word"].iloc[-1] == pytest.approx(scores.acc_word)
+
+
+def test_bilstm_crf_tags_ids_it_never_saw(small_lstm, validation_rows) -> None:
+    rows = _with_unseen_ids(validation_rows)
+    gold, predicted = small_lstm.gold_tags(rows), small_lstm.predict([r["words"] for r in rows])
+    id_words = [(g, p) for r, gt, pt in zip(rows, gold, predicted) for w, g, p in zip(r["words"], gt, pt)
+                if _ID.fullmatch(w)]
+    assert len(id_words) > 150
+    assert sum(g == p for g, p in id_words) / len(id_words) >= 0.95  # 0.984 with seed 0
+    tags = dict(small_lstm.tag_text("Please pick up panel 500330 and install it on stud 500113."))
+    assert (tags["500330"], tags["500113"]) == ("ID_wall", "ID_stud")
+
+
+@pytest.mark.parametrize(
+    "text, expected",
+    [
+        ("Pick up panel 500330 and put it on stud 500113.", {"500330": "ID_wall", "500113": "ID_stud"}),
+        ("Grab the drywall 500345 and install it on the stud 500199 along the middle line.",
+         {"500345": "ID_wall", "500199": "ID_stud", "middle": "Vr_md"}),
+        ("Install the full-size panel on the stud right of 500150.",
+         {"full-size": "dim", "right": "St_loc1", "500150": "St_loc2"}),
+        ("PUT PANEL 500398 ON STUD 500113 IN THE TOP ROW", {"500398": "ID_wall", "500113": "ID_stud", "TOP": "Hr_top"}),
+    ],
+)
+def test_the_default_tagger_on_unseen_ids(text, expected) -> None:
+    tags = dict(default_tagger().tag_text(text))
+    assert {w: tags[w] for w in expected} == expected
+
+
+def test_the_default_tagger_is_shipped_small_and_accurate() -> None:
+    tagger = load_tagger(DEFAULT_TAGGER_DIR)
+    assert isinstance(tagger, BiLstmCrfTagger) and tagger.labels == list(TAGS)
+    assert tagger.n_parameters() == json.loads((DEFAULT_TAGGER_DIR / "tagger.json").read_text())["n_parameters"]
+    assert sum(f.stat().st_size for f in DEFAULT_TAGGER_DIR.iterdir()) < 4_000_000
+    assert len(tagger.history) == 20
+    test_scores = tagger.evaluate(read_split("test"))
+    assert test_scores.acc_inst >= 0.994
+    assert test_scores.acc_word >= 0.999
+
+
+def test_training_is_reproducible(train_rows) -> None:
+    a = BiLstmCrfTagger(embedding_dim=8, hidden_size=8, epochs=2)
+    b = BiLstmCrfTagger(embedding_dim=8, hidden_size=8, epochs=2)
+    ha = a.fit(train_rows[:80], progress=False, seed=3)
+    hb = b.fit(train_rows[:80], progress=False, seed=3)
+    pd.testing.assert_frame_equal(ha.drop(columns="seconds"), hb.drop(columns="seconds"))
+    words = [r["words"] for r in train_rows[:30]]
+    assert a.predict(words) == b.predict(words)
+    assert all(torch.equal(x, y) for x, y in zip(a.network.state_dict().values(), b.network.state_dict().values()))
+
+
+def test_the_coreference_variant(train_rows) -> None:
+    tagger = BiLstmCrfTagger(labels=COREF_TAGS, tag_field="coref_tags", embedding_dim=16, hidden_size=16, epochs=3)
+    tagger.fit(train_rows[:100], progress=False)
+    predicted = tagger.predict([r["words"] for r in train_rows[:20]])
+    assert {t for tags in predicted for t in tags} <= set(COREF_TAGS)
+    with pytest.raises(ValueError, match="'Trg' is not one of this tagger's labels"):
+        BiLstmCrfTagger().gold_tags([{"words": ["it"], "tags": ["Trg"]}])
+
+
+# --- BERT -----------------------------------------------------------------------------------------
+def test_vote_word_tags_majority_and_ties() -> None:
+    # [CLS] 500 ##10 ##7 [SEP]: two of three sub-words say ID_stud.
+    assert vote_word_tags(["O", "ID_stud", "St_loc2", "ID_stud", "O"], [None, 0, 0, 0, None]) == ["ID_stud"]
+    # A tie (1:1) and a three-way split have no strict majority: the first sub-word decides.
+    assert vote_word_tags(["Dw_loc1", "Vr_md"], [0, 0]) == ["Dw_loc1"]
+    assert vote_word_tags(["Vr_md", "Dw_loc1"], [0, 0]) == ["Vr_md"]
+    assert vote_word_tags(["width", "length", "dim"], [0, 0, 0]) == ["width"]
+    assert vote_word_tags(["width", "length", "length", "width"], [0, 0, 0, 0]) == ["width"]
+    # 2 of 3 is more than half even when the first disagrees.
+    assert vote_word_tags(["O", "dim", "dim"], [0, 0, 0]) == ["dim"]
+    # Several words, and a word with no token at all (n_words says it exists).
+    assert vote_word_tags(["O", "ID_wall", "O"], [None, 0, 2], n_words=3) == ["ID_wall", "O", "O"]
+    assert vote_word_tags([], []) == []
+    with pytest.raises(ValueError):
+        vote_word_tags(["O"], [0, 1])
+
+
+def test_split_into_pieces() -> None:
+    assert split_into_pieces([1, 3, 2, 2, 1], 4) == [(0, 2), (2, 4), (4, 5)]
+    assert split_into_pieces([6, 1], 4) == [(0, 1), (1, 2)]  # an over-long word is a piece of its own
+    assert split_into_pieces([], 4) == []
+
+
+def test_bert_learns_beyond_all_o(small_bert, validation_rows) -> None:
+    history = small_bert.history
+    assert list(history.columns) == list(HISTORY_COLUMNS) and len(history) == 1
+    assert small_bert.model.config.id2label[7] == "ID_stud"
+    scores = small_bert.evaluate(validation_rows)
+    share_of_o = sum(t == "O" for r in validation_rows for t in r["tags"]) / scores.n_words
+    assert share_of_o < 0.8
+    assert scores.acc_word >= 0.85
+
+
+def test_bert_cuts_long_input_into_pieces(small_bert) -> None:
+    words = ("put the full-size panel 500310 on stud 500107 " * 40).split()
+    whole = small_bert.predict([words])[0]
+    small_bert.max_length = 16
+    try:
+        cut = small_bert.predict([words])[0]
+    finally:
+        small_bert.max_length = 128
+    assert len(whole) == len(cut) == len(words) == 320
+    assert set(cut) <= set(TAGS)
+
+
+# --- both taggers: interface, saving and loading ----------------------------------------------------
+@pytest.fixture(params=["bilstm-crf", "bert"])
+def tagger(request, small_lstm, small_bert):
+    return small_lstm if request.param == "bilstm-crf" else small_bert
+
+
+def test_empty_input(tagger) -> None:
+    assert tagger.predict([]) == []
+    assert tagger.predict([[]]) == [[]]
+    out = tagger.predict([[], ["stud", "500107"], []])
+    assert out[0] == out[2] == [] and len(out[1]) == 2
+
+
+def test_words_as_people_type_them(tagger) -> None:
+    lower = tagger.predict([["put", "the", "full-size", "4x8", "on", "stud", "500107"]])[0]
+    upper = tagger.predict([["PUT", "The", "Full-Size", "4X8", "ON", "Stud", "500107"]])[0]
+    assert len(lower) == 7 and set(lower) <= set(TAGS)
+    assert lower == upper  # both taggers are uncased
+
+
+def test_predict_refuses_a_bare_word_list(tagger) -> None:
+    with pytest.raises(TypeError, match="list of word lists"):
+        tagger.predict(["stud", "500107"])
+
+
+def test_save_and_load_give_identical_predictions(tagger, tmp_path, validation_rows) -> None:
+    tagger.save(tmp_path / "saved")
+    meta = json.loads((tmp_path / "saved" / "tagger.json").read_text())
+    assert meta["kind"] == tagger.kind and meta["labels"] == list(TAGS) and "versions" in meta
+    loaded = load_tagger(tmp_path / "saved")
+    assert type(loaded) is type(tagger) and loaded.n_parameters() == tagger.n_parameters()
+    words = [r["words"] for r in validation_rows[:40]]
+    assert loaded.predict(words) == tagger.predict(words)
+    pd.testing.assert_frame_equal(loaded.history, tagger.history, check_dtype=False)
+
+
+word_lists = st.lists(
+    st.lists(
+        st.one_of(
+            st.text(min_size=1, max_size=12),
+            st.sampled_from(["stud", "500107", "PANEL", "4x8", "full-size", "middle", "7th", "", "\u200b", "ünïcödé"]),
+            st.integers(0, 10**7).map(str),
+        ),
+        max_size=15,
+    ),
+    max_size=4,
+)
+
+
+@pytest.mark.parametrize("kind", ["bilstm-crf", "bert"])
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(sentences=word_lists)
+def test_predict_gives_one_known_tag_per_word(kind, sentences, small_lstm, small_bert) -> None:
+    tagger = small_lstm if kind == "bilstm-crf" else small_bert
+    predicted = tagger.predict(sentences)
+    assert [len(tags) for tags in predicted] == [len(words) for words in sentences]
+    assert all(tag in TAGS for tags in predicted for tag in tags)
+
+
+def test_untrained_taggers_say_so() -> None:
+    for tagger in (BiLstmCrfTagger(), BertTagger()):
+        with pytest.raises(TaggerNotTrainedError, match="not trained"):
+            tagger.predict([["stud"]])
+        with pytest.raises(TaggerNotTrainedError):
+            tagger.save("never-written")
+
+
+def test_bad_settings_are_refused() -> None:
+    with pytest.raises(ValueError, match="tag_field"):
+        BiLstmCrfTagger(tag_field="labels")
+    with pytest.raises(ValueError, match="labels"):
+        BertTagger(labels=["O", "O"])
+
+
+# --- loading errors ------------------------------------------------------------------------------------
+def test_loading_something_that_is_not_a_tagger(tmp_path, small_lstm) -> None:
+    with pytest.raises(TaggerLoadError, match="does not exist"):
+        load_tagger(tmp_path / "missing")
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(TaggerLoadError, match="is not a saved tagger: tagger.json is missing"):
+        load_tagger(tmp_path / "empty")
+
+    saved = small_lstm.save(tmp_path / "saved")
+    meta = json.loads((saved / "tagger.json").read_text())
+    (saved / "tagger.json").write_text("{not json")
+    with pytest.raises(TaggerLoadError, match="tagger.json is not valid JSON"):
+        load_tagger(saved)
+    (saved / "tagger.json").write_text(json.dumps(dict(meta, kind="svm")))
+    with pytest.raises(TaggerLoadError, match="unknown kind 'svm'"):
+        load_tagger(saved)
+    (saved / "tagger.json").write_text(json.dumps(dict(meta, settings=dict(meta["settings"], hidden_size=7))))
+    with pytest.raises(TaggerLoadError, match="does not fit the settings"):
+        load_tagger(saved)
+    (saved / "tagger.json").write_text(json.dumps(meta))
+    (saved / "weights.safetensors").write_bytes(b"\x00garbage")
+    with pytest.raises(TaggerLoadError, match="weights.safetensors is corrupt"):
+        load_tagger(saved)
+    (saved / "weights.safetensors").unlink()
+    with pytest.raises(TaggerLoadError, match="weights.safetensors is missing"):
+        load_tagger(saved)
+    assert issubclass(TaggerLoadError, ValueError)
+
+
+def test_loading_a_bert_tagger_without_its_model(tmp_path, small_bert) -> None:
+    saved = small_bert.save(tmp_path / "bert")
+    (saved / "model" / "config.json").unlink()
+    with pytest.raises(TaggerLoadError, match="model/config.json is missing"):
+        load_tagger(saved)
+
+
+# --- commands ----------------------------------------------------------------------------------------------
+def _run(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser()
+    add_commands(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(argv)
+    return args.func(args)
+
+
+def test_result_line() -> None:
+    s = score_tagging(GOLD, PREDICTED)
+    assert result_line(s) == "acc_word=0.6667 acc_inst=0.3333 n_instructions=3"
+    assert result_line(s, {"acc_task": 0.5, "n_refusals": 2}) == (
+        "acc_word=0.6667 acc_inst=0.3333 n_instructions=3 acc_task=0.5000 n_refusals=2"
+    )
+
+
+def test_evaluate_command(capsys) -> None:
+    assert _run(["evaluate", "--tagger", "gold", "--split", "validation"]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    assert out[-1] == "acc_word=1.0000 acc_inst=1.0000 n_instructions=158 acc_task=1.0000"
+    assert _run(["evaluate", "--split", "test"]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    assert re.fullmatch(r"acc_word=\d\.\d{4} acc_inst=\d\.\d{4} n_instructions=158 acc_task=\d\.\d{4}", out[-1])
+    assert any(line.startswith("Vr_md") for line in out)  # the per-tag table
+
+
+def test_train_command_and_its_errors(tmp_path, capsys) -> None:
+    out_dir = tmp_path / "lstm"
+    assert _run(["train", "bilstm-crf", "--out", str(out_dir), "--train-size", "40", "--epochs", "1"]) == 0
+    printed = capsys.readouterr().out
+    assert str(out_dir) in printed and "epoch 1:" in printed and "val_acc_inst=" in printed
+    assert load_tagger(out_dir).training_info["n_train_instructions"] == 40
+    with pytest.raises(ValueError, match="--train-size"):
+        _run(["train", "bilstm-crf", "--out", str(out_dir), "--train-size", "0"])
+    with pytest.raises(ValueError, match="--encoder"):
+        _run(["train", "bilstm-crf", "--out", str(out_dir), "--encoder", "bert-base-uncased"])
+    (tmp_path / "broken").mkdir()
+    with pytest.raises(TaggerLoadError, match="tagger.json is missing"):
+        _run(["evaluate", "--tagger", str(tmp_path / "broken"), "--split", "test"])

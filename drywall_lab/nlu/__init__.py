@@ -12,43 +12,53 @@ Acc_inst (Table 3) and per-tag error table (Table 4).
 >>> default_tagger().tag_text("Put panel 500310 on stud 500113")
 [('Put', 'O'), ('panel', 'O'), ('500310', 'ID_wall'), ('on', 'O'), ('stud', 'O'), ('500113', 'ID_stud')]
 """
-from drywall_lab.nlu.base import (
-    DEFAULT_SEED,
-    HISTORY_COLUMNS,
-    Tagger,
-    TaggerLoadError,
-    TaggerNotTrainedError,
-    labels_for,
-    load_tagger,
-    seed_everything,
-)
-from drywall_lab.nlu.bert import (
-    DEFAULT_ENCODER,
-    PAPER_ENCODER,
-    BertTagger,
-    EncoderNotFoundError,
-    default_encoder_path,
-    split_into_pieces,
-    vote_word_tags,
-)
-from drywall_lab.nlu.bilstm_crf import BiLstmCrfTagger, fallback_token, word_key
-from drywall_lab.nlu.default import DEFAULT_TAGGER_DIR, default_tagger
-from drywall_lab.nlu.metrics import (
-    TaggingScores,
-    acc_inst,
-    acc_word,
-    confusion_pairs,
-    count_instruction_errors,
-    count_word_errors,
-    instruction_errors,
-    score_tagging,
-    tag_error_table,
-)
+import importlib
+from typing import Any
+
+#: name -> module: imported on first use, so that commands that need no model do not load torch.
+_EXPORTS = {
+    "DEFAULT_SEED": "drywall_lab.nlu.base",
+    "HISTORY_COLUMNS": "drywall_lab.nlu.base",
+    "Tagger": "drywall_lab.nlu.base",
+    "TaggerLoadError": "drywall_lab.nlu.base",
+    "TaggerNotTrainedError": "drywall_lab.nlu.base",
+    "labels_for": "drywall_lab.nlu.base",
+    "load_tagger": "drywall_lab.nlu.base",
+    "seed_everything": "drywall_lab.nlu.base",
+    "DEFAULT_ENCODER": "drywall_lab.nlu.bert",
+    "PAPER_ENCODER": "drywall_lab.nlu.bert",
+    "BertTagger": "drywall_lab.nlu.bert",
+    "EncoderNotFoundError": "drywall_lab.nlu.bert",
+    "default_encoder_path": "drywall_lab.nlu.bert",
+    "split_into_pieces": "drywall_lab.nlu.bert",
+    "vote_word_tags": "drywall_lab.nlu.bert",
+    "BiLstmCrfTagger": "drywall_lab.nlu.bilstm_crf",
+    "fallback_token": "drywall_lab.nlu.bilstm_crf",
+    "word_key": "drywall_lab.nlu.bilstm_crf",
+    "DEFAULT_TAGGER_DIR": "drywall_lab.nlu.default",
+    "default_tagger": "drywall_lab.nlu.default",
+    "TaggingScores": "drywall_lab.nlu.metrics",
+    "acc_inst": "drywall_lab.nlu.metrics",
+    "acc_word": "drywall_lab.nlu.metrics",
+    "confusion_pairs": "drywall_lab.nlu.metrics",
+    "count_instruction_errors": "drywall_lab.nlu.metrics",
+    "count_word_errors": "drywall_lab.nlu.metrics",
+    "instruction_errors": "drywall_lab.nlu.metrics",
+    "score_tagging": "drywall_lab.nlu.metrics",
+    "tag_error_table": "drywall_lab.nlu.metrics",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _EXPORTS:
+        return getattr(importlib.import_module(_EXPORTS[name]), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "DEFAULT_SEED", "HISTORY_COLUMNS", "Tagger", "TaggerLoadError", "TaggerNotTrainedError", "labels_for",
     "load_tagger", "seed_everything", "DEFAULT_ENCODER", "PAPER_ENCODER", "BertTagger", "EncoderNotFoundError",
     "default_encoder_path", "split_into_pieces", "vote_word_tags", "BiLstmCrfTagger", "fallback_token", "word_key",
     "DEFAULT_TAGGER_DIR", "default_tagger", "TaggingScores", "acc_inst", "acc_word", "confusion_pairs",
-    "count_instruction_errors", "count_word_errors", "instruction_errors", "score_tagging", "tag_error_table",
+    "count_instruction_errors", "count_word_errors", "error_examples", "instruction_errors", "score_tagging", "tag_error_table",
 ]

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from collections import Counter
 from dataclasses import asdict, dataclass
-from typing import Sequence
+from typing import Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -148,3 +148,22 @@ def instruction_errors(gold: TagLists, predicted: TagLists) -> list[tuple[int, i
         for j, (g, p) in enumerate(zip(g_tags, p_tags))
         if g != p
     ]
+
+
+def error_examples(rows: Sequence[Mapping], predicted: TagLists, tag_field: str = "tags") -> pd.DataFrame:
+    """The instructions a tagger got wrong, one row each, most wrong words first (the paper's Fig. 14).
+
+    Columns ``index`` (position in ``rows``), ``id``, ``n_errors`` and ``mistakes``, e.g.
+    ``"middle: Dw_loc1 -> Vr_md"`` (word: gold -> predicted, ``;``-separated); empty when
+    every instruction is right. Ties keep the order of ``rows``.
+    """
+    gold = [list(row[tag_field]) for row in rows]
+    by_instruction: dict[int, list[str]] = {}
+    for i, j, g, p in instruction_errors(gold, predicted):
+        by_instruction.setdefault(i, []).append(f"{rows[i]['words'][j]}: {g} -> {p}")
+    records = [
+        {"index": i, "id": rows[i].get("id", str(i)), "n_errors": len(m), "mistakes": "; ".join(m)}
+        for i, m in by_instruction.items()
+    ]
+    table = pd.DataFrame(records, columns=["index", "id", "n_errors", "mistakes"])
+    return table.sort_values("n_errors", ascending=False, kind="stable").reset_index(drop=True)

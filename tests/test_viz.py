@@ -1,0 +1,112 @@
+"""Visualisation (drywall_lab/viz.py): the meshcat scene from the MuJoCo geoms, its recorded animation
+exported as self-contained HTML, keyframe thinning, and the matplotlib fallbacks."""
+from __future__ import annotations
+
+import base64
+import re
+
+import matplotlib
+import numpy as np
+import pytest
+import umsgpack
+
+matplotlib.use("Agg")
+# meshcat 0.3.2 imports a pyzmq module that pyzmq has deprecated; nothing here uses it
+pytestmark = pytest.mark.filterwarnings("ignore:zmq.eventloop.ioloop is deprecated:DeprecationWarning")
+
+from drywall_lab import viz  # noqa: E402
+from drywall_lab.rc import JointTrace, RobotCell  # noqa: E402
+from drywall_lab.rc.robot import JOINTS  # noqa: E402
+
+
+def decode_commands(page: str) -> list[dict]:
+    """The meshcat commands a static page replays: base64 msgpack blobs in data: URLs."""
+    blobs = re.findall(r"data:application/octet-binary;base64,([A-Za-z0-9+/=]+)", page)
+    return [umsgpack.unpackb(base64.b64decode(b)) for b in blobs]
+
+
+@pytest.fixture(scope="module")
+def recorded_cell():
+    """A fresh cell whose base drives 0.6 m along the rail, recorded at 10 frames a second."""
+    cell = RobotCell(record_fps=10)
+    q = cell.scene.q
+    cell.run_stage(cell.planner.base_stage("base_demo", "free", q, q[0] + 0.6))
+    cell.hold(0.3)
+    return cell
+
+
+@pytest.fixture(scope="module")
+def exported(recorded_cell):
+    scene = viz.MeshcatScene(recorded_cell.scene.model)
+    try:
+        kept = scene.animate(recorded_cell.recording)
+        page = scene.html()
+    finally:
+        scene.close()
+    return page, kept
+
+
+def test_static_html_is_self_contained_with_the_scene_and_the_animation(exported, recorded_cell):
+    page, kept = exported
+    assert page.lstrip().startswith("<!DOCTYPE html>") and "MeshCat.Viewer" in page
+    assert not re.search(r'<script[^>]+src=', page)  # the viewer's code is inline: no server, no network
+    commands = decode_commands(page)
+    objects = {c["path"].split("/")[-1] for c in commands if c["type"] == "set_object"}
+    for name in ("floor", "stud_500100", "stud_500112", "panel_500320", "carriage_box", "upper_arm", "lifter_pad"):
+        assert name in objects
+    animations = [c for c in commands if c["type"] == "set_animation"]
+    assert len(animations) == 1 and animations[0]["options"]["play"]
+    clips = {a["path"].split("/")[-1]: a["clip"] for a in animations[0]["animations"]}
+    assert {"carriage", "link1", "link6", "panel_500320"} <= set(clips)
+    track = {t["name"]: t for t in clips["carriage"]["tracks"]}[".position"]
+    xs = [k["value"][0] for k in track["keys"]]
+    assert xs[-1] - xs[0] == pytest.approx(0.6, abs=0.01)  # the carriage's drive along the rail is in it
+    assert 0 < kept < len(recorded_cell.recording) * len(clips)  # thinned
+
+
+def test_embed_and_save(exported, recorded_cell, tmp_path):
+    page, _ = exported
+    frame = viz.iframe_html(page, 300)
+    assert frame.startswith("<div") and 'srcdoc="' in frame and "&quot;" in frame
+    assert "<script>" not in frame  # escaped inside the attribute
+
+
+def test_keyframes_thin_straight_motion_and_keep_turns():
+    t = np.linspace(0, 4, 81)
+    still = np.tile([1.0, 0, 0, 0], (81, 1))
+    line = np.c_[t, 0 * t, 0 * t]
+    assert viz.keyframes(t, line, still) == [0, 80]
+    corner = np.c_[np.minimum(t, 2), np.maximum(t - 2, 0), 0 * t]
+    keep = viz.keyframes(t, corner, still)
+    assert keep[0] == 0 and keep[-1] == 80 and 2 <= len(keep) <= 5
+    assert any(abs(t[k] - 2) <= 0.05 for k in keep)  # the corner survives
+
+
+def test_elevation_draws_every_geom_but_the_floor(recorded_cell):
+    m = recorded_cell.scene.model
+    ax = viz.draw_elevation(m, recorded_cell.scene.data)
+    shapes = sum(len(viz.geom_shapes(m, g)) for g in viz.visible_geoms(m) if m.geom_type[g] != 0)
+    assert len(ax.patches) == shapes
+    top = viz.draw_elevation(m, viz.recording_frame(recorded_cell.recording, 0.0), view="top")
+    assert top.get_ylabel().startswith("y")
+    fig = viz.draw_film(m, recorded_cell.recording, [0.0, 1.0, 2.0], ncols=3)
+    assert len(fig.axes) == 3
+
+
+def test_joint_trajectory_plot():
+    trace = JointTrace()
+    for k in range(50):
+        q = np.full(len(JOINTS), 0.01 * k)
+        trace.add(0.02 * k, q, q + 0.001)
+    trace.stages = [("approach_pick", 0.0, 0.5), ("descend", 0.5, 1.0)]
+    fig = viz.plot_joint_trajectories(trace, "test")
+    assert len(fig.axes) == len(JOINTS)
+    assert trace.largest_tracking_error == pytest.approx(np.full(len(JOINTS), 0.001))
+
+
+def test_join_recordings_plays_them_one_after_another(recorded_cell):
+    rec = recorded_cell.recording
+    joined = viz.join_recordings([rec, rec])
+    assert len(joined) == 2 * len(rec)
+    assert np.all(np.diff(joined.times) > 0)
+    assert joined.duration == pytest.approx(2 * rec.duration + 1 / rec.fps)

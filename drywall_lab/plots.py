@@ -1,6 +1,8 @@
 """Matplotlib drawings for the notebooks: the site and the corpus statistics."""
 from __future__ import annotations
 
+from typing import Mapping
+
 import matplotlib.pyplot as plt
 import pandas as pd
 from matplotlib.patches import Rectangle
@@ -78,3 +80,19 @@ def draw_wall_steps(states: list[SiteState], titles: list[str], ncols: int = 2, 
         ax.axis("off")
     fig.tight_layout()
     return fig
+
+
+def plot_training_curves(histories: Mapping[str, pd.DataFrame], column: str = "train_acc_word",
+                         ax: plt.Axes | None = None, title: str | None = None) -> plt.Axes:
+    """One line per model of a ``Tagger.history`` column against the epoch (the paper's Fig. 13)."""
+    ax = ax or plt.subplots(figsize=(6, 3.5))[1]
+    for name, history in histories.items():
+        if column not in history:
+            raise KeyError(f"history {name!r} has no column {column!r}; it has {', '.join(history.columns)}")
+        ax.plot(history["epoch"], history[column], marker="o", markersize=3, label=name)
+    ax.set_xlabel("epoch")
+    ax.set_ylabel(column)
+    ax.set_title(title or column)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    return ax

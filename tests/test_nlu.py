@@ -31,6 +31,7 @@ from drywall_lab.nlu import (
     count_instruction_errors,
     count_word_errors,
     default_tagger,
+    error_examples,
     fallback_token,
     load_tagger,
     score_tagging,
@@ -130,6 +131,31 @@ def test_tag_error_table_and_confusion_pairs() -> None:
         ("Vr_md", "Dw_loc1", 1), ("Dw_loc1", "St_loc1", 1), ("O", "St_loc1", 1)
     }
     assert confusion_pairs(GOLD, GOLD).empty
+
+
+def test_error_examples_list_the_wrong_instructions() -> None:
+    rows = [{"id": f"r{i}", "words": [f"w{j}" for j in range(len(tags))], "tags": tags} for i, tags in enumerate(GOLD)]
+    table = error_examples(rows, PREDICTED)
+    assert list(table.columns) == ["index", "id", "n_errors", "mistakes"]
+    assert table.to_dict("records") == [
+        {"index": 2, "id": "r2", "n_errors": 2, "mistakes": "w0: Dw_loc1 -> St_loc1; w1: O -> St_loc1"},
+        {"index": 1, "id": "r1", "n_errors": 1, "mistakes": "w1: Vr_md -> Dw_loc1"},
+    ]
+    assert error_examples(rows, GOLD).empty
+
+
+def test_plot_training_curves() -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from drywall_lab.plots import plot_training_curves
+
+    history = pd.DataFrame({"epoch": [1, 2], "train_acc_word": [0.8, 0.9]})
+    ax = plot_training_curves({"a": history, "b": history.assign(train_acc_word=[0.5, 0.7])})
+    assert [line.get_label() for line in ax.get_lines()] == ["a", "b"]
+    assert list(ax.get_lines()[1].get_ydata()) == [0.5, 0.7]
+    with pytest.raises(KeyError, match="val_acc_inst"):
+        plot_training_curves({"a": history}, column="val_acc_inst")
 
 
 def test_metrics_refuse_mismatched_or_empty_input() -> None:

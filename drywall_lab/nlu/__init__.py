@@ -43,6 +43,7 @@ _EXPORTS = {
     "confusion_pairs": "drywall_lab.nlu.metrics",
     "count_instruction_errors": "drywall_lab.nlu.metrics",
     "count_word_errors": "drywall_lab.nlu.metrics",
+    "error_examples": "drywall_lab.nlu.metrics",
     "instruction_errors": "drywall_lab.nlu.metrics",
     "score_tagging": "drywall_lab.nlu.metrics",
     "tag_error_table": "drywall_lab.nlu.metrics",

@@ -146,6 +146,15 @@ def _cmd_run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_experiment(args: argparse.Namespace) -> int:
+    """The paper's NLU study (Tables 3-5, Fig. 13) on this corpus."""
+    from drywall_lab.nlu.experiments import ExperimentSettings, run_paper_experiment
+
+    settings = ExperimentSettings.fast() if args.fast else ExperimentSettings.paper()
+    run_paper_experiment(args.out, settings)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     from drywall_lab.corpus import CORPUS_DIR, SEED
 
@@ -168,6 +177,12 @@ def build_parser() -> argparse.ArgumentParser:
     from drywall_lab.nlu.cli import add_commands as add_tagger_commands
 
     add_tagger_commands(sub)  # train, evaluate (drywall_lab/nlu/cli.py)
+
+    p = sub.add_parser("experiment", help="the paper's NLU study: LSTM/BERT-M1..M4, BERT-C1..C4, Tables 3-5, Fig. 13")
+    p.add_argument("study", choices=["paper"])
+    p.add_argument("--out", default="results/paper", help="output folder (default results/paper)")
+    p.add_argument("--fast", action="store_true", help="an eighth of the data and 3 / 1 epochs: a quick check, not the study")
+    p.set_defaults(func=_cmd_experiment)
 
     p = sub.add_parser("interpret", help="one instruction: tags, the information-mapping rule trace, the command")
     p.add_argument("text", help='the instruction, e.g. "Pick up the full-size drywall and put it on stud 500100"')

@@ -1,0 +1,24 @@
+"""The paper's NLU study (drywall_lab/nlu/experiments.py), on tiny settings: every table and figure is written."""
+from __future__ import annotations
+
+import pandas as pd
+
+from drywall_lab.nlu.experiments import PAPER_TABLE3, ExperimentSettings, run_paper_experiment
+
+
+def test_tiny_study_writes_every_table(tmp_path):
+    settings = ExperimentSettings(train_sizes={"1": 24, "2": 16, "3": 12, "4": 8}, lstm_epochs=1, bert_epochs=1)
+    tables = run_paper_experiment(tmp_path, settings, log=lambda _: None)
+    t3 = pd.read_csv(tmp_path / "table3_validation.csv")
+    assert list(t3.model) == [f"LSTM-M{i}" for i in range(1, 5)] + [f"BERT-M{i}" for i in range(1, 5)]
+    assert t3.paper_Acc_inst.tolist() == [PAPER_TABLE3[m][3] / 100 for m in t3.model]
+    assert ((t3.Acc_word >= 0) & (t3.Acc_word <= 1) & (t3.N_l <= 158)).all()
+    assert (t3.N_l == ((1 - t3.Acc_inst) * 158).round().astype(int)).all()
+    assert list(pd.read_csv(tmp_path / "table5_coref_validation.csv").model) == [f"BERT-C{i}" for i in range(1, 5)]
+    t4 = pd.read_csv(tmp_path / "table4_errors_per_tag.csv", index_col="tag")
+    assert t4.loc["ALL"].tolist() == t3.N_w.tolist()
+    assert len(pd.read_csv(tmp_path / "novel.csv")) == 12
+    assert pd.read_csv(tmp_path / "seconds_by_sentences.csv").instructions.sum() == 158
+    assert tables["best_on_test"].model.iloc[0] in set(t3.model)
+    assert (tmp_path / "fig13_training_accuracy.png").stat().st_size > 10_000
+    assert "Table 3" in (tmp_path / "README.md").read_text()

@@ -326,6 +326,7 @@ def test_save_and_load_give_identical_predictions(tagger, tmp_path, validation_r
     assert meta["kind"] == tagger.kind and meta["labels"] == list(TAGS) and "versions" in meta
     loaded = load_tagger(tmp_path / "saved")
     assert type(loaded) is type(tagger) and loaded.n_parameters() == tagger.n_parameters()
+    assert loaded.settings() == tagger.settings()
     words = [r["words"] for r in validation_rows[:40]]
     assert loaded.predict(words) == tagger.predict(words)
     pd.testing.assert_frame_equal(loaded.history, tagger.history, check_dtype=False)
@@ -367,6 +368,10 @@ def test_bad_settings_are_refused() -> None:
         BiLstmCrfTagger(tag_field="labels")
     with pytest.raises(ValueError, match="labels"):
         BertTagger(labels=["O", "O"])
+    with pytest.raises(ValueError, match="warmup_ratio"):
+        BertTagger(warmup_ratio=1.0)
+    with pytest.raises(ValueError, match="learning_rate"):
+        BiLstmCrfTagger(learning_rate=-1e-3)
 
 
 # --- loading errors ------------------------------------------------------------------------------------
@@ -433,10 +438,16 @@ def test_evaluate_command(capsys) -> None:
 
 def test_train_command_and_its_errors(tmp_path, capsys) -> None:
     out_dir = tmp_path / "lstm"
-    assert _run(["train", "bilstm-crf", "--out", str(out_dir), "--train-size", "40", "--epochs", "1"]) == 0
+    assert _run(["train", "bilstm-crf", "--out", str(out_dir), "--train-size", "40", "--epochs", "1",
+                 "--learning-rate", "2e-3"]) == 0
     printed = capsys.readouterr().out
     assert str(out_dir) in printed and "epoch 1:" in printed and "val_acc_inst=" in printed
-    assert load_tagger(out_dir).training_info["n_train_instructions"] == 40
+    saved = load_tagger(out_dir)
+    assert saved.training_info["n_train_instructions"] == 40 and saved.learning_rate == 2e-3
+    with pytest.raises(ValueError, match="--warmup-ratio"):
+        _run(["train", "bilstm-crf", "--out", str(out_dir), "--warmup-ratio", "0.1"])
+    with pytest.raises(ValueError, match="learning_rate"):
+        _run(["train", "bilstm-crf", "--out", str(out_dir), "--learning-rate", "0"])
     with pytest.raises(ValueError, match="--train-size"):
         _run(["train", "bilstm-crf", "--out", str(out_dir), "--train-size", "0"])
     with pytest.raises(ValueError, match="--encoder"):

@@ -175,6 +175,8 @@ class BertTagger(Tagger):
     linear decay to 0 that the transformers ``Trainer`` uses by default, batch 16,
     dropout 0.1 (hidden and attention), 5 epochs. ``max_length`` bounds the sub-word
     tokens per forward pass; longer instructions are cut into pieces between words.
+    ``warmup_ratio`` is the share of steps over which the learning rate first rises
+    linearly from 0 (the ``Trainer``'s ``warmup_ratio``; 0, no warm-up, by default).
     """
 
     kind = "bert"
@@ -190,10 +192,13 @@ class BertTagger(Tagger):
         epochs: int = 5,
         dropout: float = 0.1,
         max_length: int = 128,
+        warmup_ratio: float = 0.0,
     ) -> None:
         super().__init__(labels=labels, tag_field=tag_field)
         if min(batch_size, epochs) < 1 or not 0 <= dropout < 1 or learning_rate <= 0:
             raise ValueError("batch_size and epochs must be positive, dropout in [0, 1), learning_rate > 0")
+        if not 0 <= warmup_ratio < 1:
+            raise ValueError(f"warmup_ratio must be in [0, 1), got {warmup_ratio}")
         if max_length < 3:
             raise ValueError(f"max_length must leave room for [CLS], [SEP] and a word, got {max_length}")
         self.encoder = str(encoder)
@@ -202,6 +207,7 @@ class BertTagger(Tagger):
         self.epochs = epochs
         self.dropout = dropout
         self.max_length = max_length
+        self.warmup_ratio = warmup_ratio
         self.model = None
         self.tokenizer = None
 
@@ -213,6 +219,7 @@ class BertTagger(Tagger):
             "epochs": self.epochs,
             "dropout": self.dropout,
             "max_length": self.max_length,
+            "warmup_ratio": self.warmup_ratio,
         }
 
     @property
@@ -325,7 +332,9 @@ class BertTagger(Tagger):
 
         n_batches = -(-len(items) // self.batch_size)
         optimizer = torch.optim.AdamW(self.model.parameters(), lr=self.learning_rate, weight_decay=0.0)
-        schedule = get_linear_schedule_with_warmup(optimizer, 0, epochs * n_batches)
+        schedule = get_linear_schedule_with_warmup(
+            optimizer, round(self.warmup_ratio * epochs * n_batches), epochs * n_batches
+        )
         rng = np.random.default_rng(seed)
         records = []
         bar = tqdm(total=epochs * n_batches, desc=f"{self.kind} fine-tuning", unit="batch", disable=not progress)

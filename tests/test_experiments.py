@@ -34,4 +34,6 @@ def test_tiny_study_writes_every_table(tmp_path):
         acc = m1.set_index("model").loc[m, "Acc_inst"]
         assert f"{m} test Acc_inst >= 99.4% (paper 99.37%): {acc:.2%} vs 99.40%: {'met' if acc >= 0.994 else 'missed'}" in readme
     assert (tmp_path / "fig13_training_accuracy.png").stat().st_size > 10_000
+    history = pd.read_csv(tmp_path / "training_history.csv")  # Fig. 13's data, one row per model and epoch
+    assert history.groupby("model").epoch.max().to_dict() == {m: 1 for m in list(t3.model) + [f"BERT-C{i}" for i in range(1, 5)]}
     assert "Table 3" in (tmp_path / "README.md").read_text()

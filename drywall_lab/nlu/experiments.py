@@ -150,6 +150,8 @@ def run_paper_experiment(out_dir: Path | str, settings: ExperimentSettings | Non
         "table5_coref_validation": pd.DataFrame(table5),
         "novel": pd.DataFrame(novel_rows),
         "table4_errors_per_tag_novel": pd.DataFrame(novel_errors).rename_axis("tag"),
+        "training_history": pd.concat([h.assign(model=name) for name, h in histories.items()], ignore_index=True)
+        [["model", *histories[next(iter(histories))].columns]],
     }
     m1 = [n for n in ("LSTM-M1", "BERT-M1") if n in taggers]
     tables["m1_on_test"] = pd.DataFrame(
@@ -231,5 +233,7 @@ def _write_markdown(out: Path, tables: dict[str, pd.DataFrame], settings: Experi
         table = tables[name]
         text = table.to_string(index=name.startswith("table4"), float_format=lambda v: f"{v:.4f}")
         parts += [f"## {title}", "", "```", text, "```", ""]
-    parts += ["## Fig. 13", "", "![training accuracy](fig13_training_accuracy.png)", ""]
+    parts += ["## Fig. 13", "", "![training accuracy](fig13_training_accuracy.png)", "",
+              "Every model's per-epoch figures (loss, training and validation accuracy, seconds) are in "
+              "`training_history.csv`.", ""]
     (out / "README.md").write_text("\n".join(parts), encoding="utf-8")

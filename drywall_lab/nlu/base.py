@@ -23,6 +23,7 @@ import importlib
 import json
 import platform
 import random
+import time
 from abc import ABC, abstractmethod
 from importlib import metadata
 from pathlib import Path
@@ -33,7 +34,7 @@ import pandas as pd
 
 from drywall_lab.corpus.io import tokenize
 from drywall_lab.corpus.tags import COREF_TAGS, TAGS
-from drywall_lab.nlu.metrics import TaggingScores, score_tagging
+from drywall_lab.nlu.metrics import TaggingScores, acc_inst, acc_word, score_tagging
 
 #: Bumped when the layout of a saved tagger changes in a way old code cannot read.
 FORMAT_VERSION = 1
@@ -168,6 +169,57 @@ class Tagger(ABC):
     @abstractmethod
     def _load_weights(cls, directory: Path, meta: Mapping[str, Any]) -> "Tagger":
         """Build a trained tagger from ``directory`` whose ``tagger.json`` says ``meta``."""
+
+    # -- shared by the kinds' ``fit`` ---------------------------------------------------
+    def _fit_input(
+        self, train_rows: Sequence[Mapping], validation_rows: Sequence[Mapping] | None, epochs: int | None,
+        default_epochs: int,
+    ) -> tuple[list[Mapping], list[list[str]], list[Mapping], list[list[str]] | None, int]:
+        """Checked training input: rows with words and their gold tags, validation rows and tags, epochs."""
+        pairs = [(r, tags) for r, tags in zip(train_rows, self.gold_tags(train_rows)) if tags]
+        if not pairs:
+            raise ValueError("fit needs at least one training instruction with words")
+        validation_rows = list(validation_rows or [])
+        validation_gold = self.gold_tags(validation_rows) if validation_rows else None
+        epochs = default_epochs if epochs is None else int(epochs)
+        if epochs < 1:
+            raise ValueError(f"epochs must be at least 1, got {epochs}")
+        return [r for r, _ in pairs], [tags for _, tags in pairs], validation_rows, validation_gold, epochs
+
+    def _epoch_record(
+        self, epoch: int, *, loss_sum: float, n_items: int, correct: int, seen: int,
+        validation_rows: Sequence[Mapping], validation_gold: list[list[str]] | None, bar: Any, started: float,
+    ) -> dict[str, float]:
+        """One ``history`` row: mean training loss and word accuracy, validation scores, seconds since ``started``."""
+        record = {
+            "epoch": epoch,
+            "train_loss": loss_sum / n_items,
+            "train_acc_word": correct / seen,
+            "val_acc_word": float("nan"),
+            "val_acc_inst": float("nan"),
+        }
+        if validation_gold is not None:
+            predicted = self.predict([r["words"] for r in validation_rows])
+            record["val_acc_word"] = acc_word(validation_gold, predicted)
+            record["val_acc_inst"] = acc_inst(validation_gold, predicted)
+            bar.set_postfix(epoch=epoch, val_acc_inst=f"{record['val_acc_inst']:.4f}")
+        record["seconds"] = time.perf_counter() - started
+        return record
+
+    def _finish_fit(
+        self, records: list[dict[str, float]], *, n_train: int, n_validation: int, epochs: int, seed: int,
+        started: float,
+    ) -> pd.DataFrame:
+        """Keep the epochs as ``history`` and the run's facts as ``training_info``; return ``history``."""
+        self.history = pd.DataFrame(records, columns=list(HISTORY_COLUMNS))
+        self.training_info = {
+            "n_train_instructions": n_train,
+            "n_validation_instructions": n_validation,
+            "epochs": epochs,
+            "seed": seed,
+            "wall_seconds": round(time.perf_counter() - started, 2),
+        }
+        return self.history
 
     # -- shared ---------------------------------------------------------------------------
     def gold_tags(self, rows: Sequence[Mapping]) -> list[list[str]]:

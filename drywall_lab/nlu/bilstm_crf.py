@@ -37,14 +37,12 @@ from tqdm.auto import tqdm
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.nlu.base import (
     DEFAULT_SEED,
-    HISTORY_COLUMNS,
     Sentences,
     Tagger,
     TaggerLoadError,
     check_sentences,
     seed_everything,
 )
-from drywall_lab.nlu.metrics import acc_inst, acc_word
 
 WEIGHTS_FILE = "weights.safetensors"
 VOCABULARY_FILE = "vocabulary.json"
@@ -235,15 +233,9 @@ class BiLstmCrfTagger(Tagger):
         Fig. 13(a) plots it (over the epoch's batches, dropout on, as Keras reports it),
         validation Acc_word / Acc_inst when ``validation_rows`` are given, and seconds.
         """
-        pairs = [(r, tags) for r, tags in zip(train_rows, self.gold_tags(train_rows)) if tags]
-        if not pairs:
-            raise ValueError("fit needs at least one training instruction with words")
-        train_rows, gold = [r for r, _ in pairs], [tags for _, tags in pairs]
-        validation_rows = list(validation_rows or [])
-        validation_gold = self.gold_tags(validation_rows) if validation_rows else None
-        epochs = self.epochs if epochs is None else int(epochs)
-        if epochs < 1:
-            raise ValueError(f"epochs must be at least 1, got {epochs}")
+        train_rows, gold, validation_rows, validation_gold, epochs = self._fit_input(
+            train_rows, validation_rows, epochs, self.epochs
+        )
 
         seed_everything(seed)
         rng = np.random.default_rng(seed)
@@ -287,31 +279,14 @@ class BiLstmCrfTagger(Tagger):
                 total_loss += loss.item() * len(index)
                 bar.update()
                 bar.set_postfix(epoch=epoch, loss=f"{loss.item():.3f}")
-            record = {
-                "epoch": epoch,
-                "train_loss": total_loss / len(train_rows),
-                "train_acc_word": correct / seen,
-                "val_acc_word": float("nan"),
-                "val_acc_inst": float("nan"),
-            }
-            if validation_gold is not None:
-                predicted = self.predict([r["words"] for r in validation_rows])
-                record["val_acc_word"] = acc_word(validation_gold, predicted)
-                record["val_acc_inst"] = acc_inst(validation_gold, predicted)
-                bar.set_postfix(epoch=epoch, val_acc_inst=f"{record['val_acc_inst']:.4f}")
-            record["seconds"] = time.perf_counter() - t0
-            records.append(record)
+            records.append(self._epoch_record(
+                epoch, loss_sum=total_loss, n_items=len(train_rows), correct=correct, seen=seen,
+                validation_rows=validation_rows, validation_gold=validation_gold, bar=bar, started=t0,
+            ))
         bar.close()
         self.network.eval()
-        self.history = pd.DataFrame(records, columns=list(HISTORY_COLUMNS))
-        self.training_info = {
-            "n_train_instructions": len(train_rows),
-            "n_validation_instructions": len(validation_rows),
-            "epochs": epochs,
-            "seed": seed,
-            "wall_seconds": round(time.perf_counter() - started, 2),
-        }
-        return self.history
+        return self._finish_fit(records, n_train=len(train_rows), n_validation=len(validation_rows), epochs=epochs,
+                                seed=seed, started=started)
 
     # -- prediction ---------------------------------------------------------------------------
     def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:

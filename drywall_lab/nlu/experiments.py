@@ -142,7 +142,7 @@ def run_paper_experiment(out_dir: Path | str, settings: ExperimentSettings | Non
                 for rows, table in ((validation, errors), (novel, novel_errors)):
                     table[name] = tag_error_table(tagger.gold_tags(rows), tagger.predict([r["words"] for r in rows]),
                                                   TAGS)["errors"]
-            log(f"  validation: " + json.dumps({k: round(v, 4) if isinstance(v, float) else v
+            log("  validation: " + json.dumps({k: round(v, 4) if isinstance(v, float) else v
                                                 for k, v in (table5 if coref else table3)[-1].items()}))
     tables = {
         "table3_validation": pd.DataFrame(table3),

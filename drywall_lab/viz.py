@@ -277,16 +277,6 @@ def keyframes(times: np.ndarray, positions: np.ndarray, quaternions: np.ndarray,
     return keep
 
 
-def animation_html(model: mujoco.MjModel, recording: Recording, speed: float = 1.0) -> str:
-    """A self-contained HTML page of ``recording`` (starts a meshcat server for the time it takes)."""
-    scene = MeshcatScene(model)
-    try:
-        scene.animate(recording, speed=speed)
-        return scene.html()
-    finally:
-        scene.close()
-
-
 # --- matplotlib ------------------------------------------------------------------------------------------
 def _shape_corners(kind: str, dims: tuple, T: np.ndarray) -> np.ndarray:
     if kind == "box":

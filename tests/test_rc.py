@@ -1,6 +1,9 @@
 """Robot control (drywall_lab/rc): the scene built from the site tables, the robot's reach, the motion
 planner's rules, one real simulated pick-and-place measured against its place pose, refusals that
-cause no motion, and failures that are reported as failures.
+cause no motion, failures that are reported as failures, and episodes carried out step by step.
+
+Failures are forced rather than waited for: a panel taken off its stack or a sheet laid on it in the
+simulation only (the tables do not know), a robot mistaken about its grip, a planner made to fail.
 
 Expected geometry is computed here from the spec's section 1 (stud i at x = 0.4064 i, 1.5 x 3.5 in,
 8 ft; panels 1/2 in thick; stacks at x = 0.9 / 2.4 / 3.9), not read from the project's tables.
@@ -15,11 +18,12 @@ import pytest
 
 from drywall_lab.errors import Refusal
 from drywall_lab.im import RobotCommand
-from drywall_lab.rc import (ANGLE_TOLERANCE_DEG, JOINTS, POSITION_TOLERANCE, ArmIK, MotionPlanner, RobotCell,
-                            build_scene, fast_mode, panel_mass, pose_error)
+from drywall_lab.rc import (ANGLE_TOLERANCE_DEG, JOINTS, POSITION_TOLERANCE, ArmIK, MotionPlanner, PlacementResult,
+                            PlanningError, RobotCell, build_scene, fast_mode, goes_on_after, panel_mass, pose_error,
+                            simulate_episode)
 from drywall_lab.rc import cell as cell_module
 from drywall_lab.rc.collision import CollisionChecker
-from drywall_lab.rc.motion import DROP, seating_offset
+from drywall_lab.rc.motion import DROP, RESUME_TOLERANCE, seating_offset, timed_stage
 from drywall_lab.rc.robot import grip_transform, pose_matrix
 from drywall_lab.site import STACK_Y, Pose, default_site
 
@@ -34,6 +38,34 @@ def site():
 
 def command(site, drywall_id, stud_id, placement):
     return RobotCommand.build(site, drywall_id, stud_id, placement)
+
+
+def by_ids(drywall_id: str, stud_id: str) -> tuple[str, list[str], list[str]]:
+    """An instruction naming a panel and a stud by id: its text, words and gold tags."""
+    text = f"Take panel {drywall_id} and put it on stud {stud_id}"
+    return text, text.split(), ["O", "O", "ID_wall", "O", "O", "O", "O", "O", "ID_stud"]
+
+
+def episode(name: str, *pairs: tuple[str, str]) -> dict:
+    """A gold-tagged episode of ``(drywall_id, stud_id)`` instructions, vertical on the stud's left line."""
+    steps = [by_ids(d, s) for d, s in pairs]
+    return {"id": name, "instructions": [t for t, _, _ in steps], "words": [w for _, w, _ in steps],
+            "tags": [g for _, _, g in steps]}
+
+
+def put_panel(cell: RobotCell, drywall_id: str, position) -> None:
+    """Move a panel in the simulation only (lying flat, at rest): the site tables still have it where it was."""
+    sc = cell.scene
+    joint = sc.model.body_jntadr[sc.panel_body[drywall_id]]
+    adr, dof = sc.model.jnt_qposadr[joint], sc.model.jnt_dofadr[joint]
+    sc.data.qpos[adr:adr + 3] = position
+    sc.data.qvel[dof:dof + 6] = 0.0
+    mujoco.mj_forward(sc.model, sc.data)
+    cell.hold(0.5)  # let it settle
+
+
+def joints_at_ready(cell: RobotCell) -> bool:
+    return bool(np.max(np.abs(cell.scene.q - cell.planner.ready_posture(cell.scene.q[0]))) < 2e-3)
 
 
 # --- the scene ------------------------------------------------------------------------------------------
@@ -150,17 +182,144 @@ def test_collision_check_sees_the_arm_in_the_floor(site):
     assert "floor" in (checker.first_collision(slumped) or "")
 
 
-def test_contact_watch_reports_the_arm_hitting_a_stack():
-    """Collisions in the running simulation are reported, not hidden: drive the arm down into the stack
-    in front of it."""
+def test_the_planner_plans_no_motion_without_a_collision_check(site):
+    """Every motion is checked: a stage planned outside ``checking`` is an error, never an unchecked stage."""
+    planner = MotionPlanner(site)
+    q = planner.ready_posture(0.0)
+    with pytest.raises(RuntimeError, match="collision"):
+        planner.joint_stage("ready", "free", q, q + 0.1)
+    with pytest.raises(RuntimeError, match="collision"):
+        planner.base_stage("base", "free", q, 0.5)
+    with planner.checking(site.fresh()):
+        stage = planner.base_stage("base", "free", q, 0.5)
+    assert stage.collision_checked and stage.duration > 0
+
+
+def test_the_cell_runs_no_stage_that_was_not_checked_for_collisions():
     cell = RobotCell()
-    slumped = cell.planner.ready_posture(0.0)
-    slumped[2], slumped[3] = math.radians(110), 0.0
-    cell.run_stages([cell.planner.joint_stage("slump", "free", cell.scene.q, slumped)], None)
-    events = cell.watch.take_events()
-    assert events and all(e.stage == "slump" for e in events)
-    assert any("lifter_pad" in (e.geom1, e.geom2) and "panel_500320" in (e.geom1, e.geom2) and e.max_depth > 0.005
-               for e in events)
+    q = cell.scene.q
+    unchecked = timed_stage("slump", "arm", "free", np.array([q, q + np.radians([0, 0, 20, 0, 0, 0, 0])]), 1.0)
+    t, qpos = cell.time, cell.scene.data.qpos.copy()
+    with pytest.raises(ValueError, match="not checked for collisions"):
+        cell.run_stage(unchecked)
+    assert cell.time == t and np.array_equal(cell.scene.data.qpos, qpos)
+
+
+def test_planned_stages_are_taken_up_again_only_from_where_the_robot_is_and_only_if_safe(site):
+    planner = MotionPlanner(site)
+    state = site.fresh()
+    c = command(site, "500320", "500100", "vertical_left")
+    plan = planner.plan(c, planner.ready_posture(0.0), state)
+    seated = plan.carrying[-1].end
+    place = pose_matrix(c.place_pose.position, c.place_pose.quaternion)
+    close = seated + RESUME_TOLERANCE / 2
+    taken_up = planner.verified(plan.after_release, close, c, state, panel_pose=place)
+    np.testing.assert_array_equal(taken_up[0].samples[0], close)  # no jump in the set points
+    assert all(s.collision_checked for s in taken_up)
+    with pytest.raises(PlanningError, match="away from where the robot is"):
+        planner.verified(plan.after_release, seated + 10 * RESUME_TOLERANCE, c, state, panel_pose=place)
+    # held 10 cm further along its length than planned, the sheet would be carried into the floor
+    grip = grip_transform(T)
+    grip[1, 3] -= 0.1
+    with pytest.raises(PlanningError, match="floor"):
+        planner.verified(plan.carrying, plan.before_grip[-1].end, c, state, grip=grip)
+
+
+@pytest.mark.parametrize("success, lifted, contacts, clear, goes_on", [
+    (True, True, 0, True, True),
+    (False, False, 0, True, True),    # unreachable, grip failed: the panel is still on its stack
+    (False, False, 1, True, False),   # ... but something was hit
+    (False, False, 0, False, False),  # ... but the robot could not get back
+    (False, True, 0, True, False),    # slipped, off its pose, collided on the way
+])
+def test_the_episode_goes_on_only_while_the_site_is_what_the_tables_say(site, success, lifted, contacts, clear,
+                                                                           goes_on):
+    from drywall_lab.rc.contacts import ContactEvent
+
+    result = PlacementResult(command(site, "500320", "500100", "vertical_left"), success, None if success else "x",
+                             None, 0.0, 0.0, 0.0, 1.0, 1.0, 0,
+                             [ContactEvent("a", "b", "lift", 1.0, 1, 0.001)] * contacts,
+                             panel_lifted=lifted, robot_clear=clear)
+    assert goes_on_after(result) is goes_on
+
+
+# --- failures forced in the simulation ----------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def taken_panel_run(site):
+    """Someone carried panel 500320 off the left stack (the tables still have it there); then an episode:
+    500320 (the grip fails), 500310 (under 500320, by the tables), 500321 (placed)."""
+    cell = RobotCell()
+    put_panel(cell, "500320", (0.9, STACK_Y + 2.6, T / 2))  # on the floor beyond the stacks
+    return simulate_episode(episode("taken", ("500320", "500100"), ("500310", "500104"), ("500321", "500104")),
+                            cell=cell)
+
+
+def test_a_failed_grip_leaves_site_and_history_as_they_were_and_the_episode_goes_on(taken_panel_run):
+    run = taken_panel_run
+    assert [s.status for s in run.steps] == ["failed", "refused", "placed"]
+    failed = run.steps[0].result
+    assert failed.failure == "grip_failed" and not failed.panel_lifted and failed.robot_clear
+    assert not failed.unexpected_contacts
+    # IM interprets the next instruction against the history without 500320: it is still on the stack
+    refusal = run.steps[1].interpretation.refusal
+    assert refusal.reason == "not_on_top" and "500320" in refusal.message and not run.steps[1].robot_moved
+    assert [c.drywall_id for c in run.history.commands] == ["500321"]
+    assert run.history.state == run.cell.state and run.stopped_after is None and not run.all_placed
+    assert run.table().outcome.tolist() == ["failed: grip_failed", "no motion", "placed"]
+
+
+def test_the_way_back_after_a_failed_grip_is_a_checked_motion(taken_panel_run):
+    stages = [name for name, _, _ in taken_panel_run.steps[0].result.trace.stages]
+    assert stages[-3:] == ["descend", "withdraw", "ready"]
+
+
+def test_after_a_failed_grip_the_robot_stays_put_when_no_safe_way_back_is_found(site, monkeypatch):
+    """The way back is checked like every motion: when the check finds a collision on it, the robot does not
+    move, says why, and the episode stops."""
+    cell = RobotCell()
+    put_panel(cell, "500320", (0.9, STACK_Y + 2.6, T / 2))
+    real_grip = RobotCell.grip
+
+    def grip_then_block_the_way(self, c):
+        gripped = real_grip(self, c)
+        monkeypatch.setattr(CollisionChecker, "first_collision", lambda checker, q: "a worker would be in the way")
+        return gripped
+
+    monkeypatch.setattr(RobotCell, "grip", grip_then_block_the_way)
+    run = simulate_episode(episode("blocked", ("500320", "500100"), ("500321", "500104")), cell=cell)
+    result = run.steps[0].result
+    assert result.failure == "grip_failed" and not result.robot_clear
+    assert any("a worker would be in the way" in n and "stays where it is" in n for n in result.notes)
+    assert [name for name, _, _ in result.trace.stages][-1] == "descend"
+    assert not joints_at_ready(cell)
+    assert [s.status for s in run.steps] == ["failed", "not carried out"] and run.stopped_after == 0
+
+
+@pytest.fixture(scope="module")
+def extra_sheet_run(site):
+    """A sheet the tables do not know about (500321, from the middle stack) lies on top of the left stack;
+    the episode asks for 500320, then 500310."""
+    cell = RobotCell()
+    put_panel(cell, "500321", (0.9, STACK_Y, 3.5 * T))
+    return simulate_episode(episode("extra sheet", ("500320", "500100"), ("500310", "500104")), cell=cell)
+
+
+def test_contact_watch_reports_the_pad_pressing_on_a_sheet_the_tables_do_not_know(extra_sheet_run):
+    """Collisions in the running simulation are reported, not hidden: the planned (and checked) descent onto
+    500320 meets the unknown sheet first."""
+    result = extra_sheet_run.steps[0].result
+    events = result.unexpected_contacts
+    assert events and all(e.stage == "descend" for e in events)
+    assert any({"lifter_pad", "panel_500321"} == {e.geom1, e.geom2} and e.max_depth > 0.001 for e in events)
+
+
+def test_anything_hit_stops_the_episode_even_before_the_panel_left_its_stack(extra_sheet_run):
+    run = extra_sheet_run
+    result = run.steps[0].result
+    assert result.failure == "grip_failed" and not result.panel_lifted and result.robot_clear
+    assert run.stopped_after == 0 and [s.status for s in run.steps] == ["failed", "not carried out"]
+    assert run.steps[1].interpretation is None and not run.steps[1].robot_moved
+    assert len(run.history) == 0 and run.history.state == run.cell.state
 
 
 # --- one real pick-and-place --------------------------------------------------------------------------------
@@ -220,20 +379,102 @@ def test_refused_command_causes_no_motion(placed, site):
     np.testing.assert_array_equal(cell.scene.data.qpos, qpos)
 
 
-def test_a_panel_set_off_its_pose_is_a_failure(site, monkeypatch):
-    """A robot that believes it holds the panel 8 mm from where it does sets it 8 mm off: a failure."""
+def mistaken_grip(monkeypatch, offset) -> None:
+    """Make the robot believe it holds the panel ``offset`` (m, TCP frame) from where it does."""
     real = cell_module.believed_grip
 
     def mistaken(ik, q, cmd):
         grip = real(ik, q, cmd)
-        grip[0, 3] += 0.008  # along the panel's width, in the TCP frame
+        grip[:3, 3] += offset
         return grip
 
     monkeypatch.setattr(cell_module, "believed_grip", mistaken)
-    cell = RobotCell()
-    result = cell.execute(command(site, "500320", "500100", "vertical_left"))
-    assert not result.success and result.failure == "off_pose"
+
+
+def test_a_panel_set_off_its_pose_is_a_failure_and_the_robot_stops(site, monkeypatch):
+    """A robot that believes it holds the panel 8 mm from where it does sets it 8 mm off: a failure. The site
+    no longer matches the tables, so the rest of the episode is not carried out."""
+    mistaken_grip(monkeypatch, (0.008, 0.0, 0.0))  # along the panel's width
+    run = simulate_episode(episode("off pose", ("500320", "500100"), ("500321", "500103"), ("500310", "500106")))
+    result = run.steps[0].result
+    assert not result.success and result.failure == "off_pose" and result.panel_lifted
     assert 6.0 < result.position_error_mm < 10.0
+    assert run.stopped_after == 0 and [s.status for s in run.steps] == ["failed"] + ["not carried out"] * 2
+    t = run.steps[0].sim_time_after
+    assert all(s.interpretation is None and s.result is None and not s.robot_moved and s.sim_time_before == t
+               for s in run.steps[1:])
+    assert run.outcomes()[1:] == [None, None] and len(run.history) == 0
+    assert run.cell.state.is_installed("500320")  # fastened, off its pose: what the robot stopped for
+    assert run.table().outcome.tolist() == ["failed: off_pose; the robot stopped"] + [
+        "not carried out: the robot stopped after step 0"] * 2
+
+
+def test_a_planning_error_leaves_site_and_history_as_they_were_and_the_episode_goes_on(site, monkeypatch):
+    """A collision found while planning fails the step before any motion; IM then reads the next instruction
+    against a history without it (before, the history had the panel and the robot refused it: a Refusal)."""
+    real_plan = MotionPlanner.plan
+
+    def plan(self, c, q, state):
+        if c.drywall_id == "500320":
+            raise PlanningError("approach_pick: lifter_pad would come within 2 mm of panel_500320")
+        return real_plan(self, c, q, state)
+
+    monkeypatch.setattr(MotionPlanner, "plan", plan)
+    run = simulate_episode(episode("planning error", ("500320", "500100"), ("500310", "500104")))
+    first, second = run.steps
+    assert first.status == "failed" and first.result.failure.startswith("unreachable: approach_pick")
+    assert not first.robot_moved and first.sim_time_before == first.sim_time_after
+    assert second.status == "refused" and second.interpretation.refusal.reason == "not_on_top"
+    assert len(run.history) == 0 and run.history.state == run.cell.state == site.fresh()
+
+
+def test_replanning_errors_are_recorded_and_the_first_plan_is_used_once_checked_again(site, monkeypatch):
+    def fail(*args, **kwargs):
+        raise PlanningError("forced for the test")
+
+    cell = RobotCell()
+    monkeypatch.setattr(cell.planner, "replan_carry", fail)
+    monkeypatch.setattr(cell.planner, "replan_release", fail)
+    result = cell.execute(command(site, "500320", "500100", "vertical_left"))
+    assert result.success, result
+    assert result.notes == ["re-planning the carry from the measured grip failed: forced for the test",
+                            "carried as first planned (checked again with the measured grip)",
+                            "re-planning the retreat failed: forced for the test",
+                            "retreated as first planned (checked again)"]
+    assert "forced for the test" in result.summary()["notes"]
+
+
+def test_an_unsafe_first_plan_is_not_used_when_replanning_fails(site, monkeypatch):
+    """The robot believes it holds the sheet 10 cm further along its length than it does: the re-planned carry
+    fails (forced), and the first plan's carry, checked with that grip, would put the sheet into the floor. The
+    step fails cleanly: the vacuum lets go, the pad withdraws, the panel is still on its stack."""
+    mistaken_grip(monkeypatch, (0.0, -0.1, 0.0))
+    cell = RobotCell()
+
+    def fail(*args, **kwargs):
+        raise PlanningError("forced for the test")
+
+    monkeypatch.setattr(cell.planner, "replan_carry", fail)
+    c = command(site, "500320", "500100", "vertical_left")
+    result = cell.execute(c)
+    assert result.failure.startswith("unreachable") and not result.panel_lifted and result.robot_clear
+    assert result.notes[0].endswith("forced for the test") and "floor" in result.notes[1]
+    assert np.linalg.norm(np.subtract(cell.scene.panel_pose("500320").position, c.pick_pose.position)) < 0.005
+    assert cell.state == site.fresh() and joints_at_ready(cell) and goes_on_after(result)
+    assert [name for name, _, _ in result.trace.stages][-2:] == ["withdraw", "ready"]
+
+
+def test_a_blocked_retreat_leaves_the_robot_where_it_is(site, monkeypatch):
+    def fail(*args, **kwargs):
+        raise PlanningError("forced for the test")
+
+    cell = RobotCell()
+    monkeypatch.setattr(cell.planner, "replan_release", fail)
+    monkeypatch.setattr(cell.planner, "verified", fail)
+    result = cell.execute(command(site, "500320", "500100", "vertical_left"))
+    assert result.failure.startswith("retreat_blocked") and result.panel_lifted and not result.robot_clear
+    assert "retreat" not in [name for name, _, _ in result.trace.stages]
+    assert cell.state.is_installed("500320") and not goes_on_after(result)
 
 
 def test_pose_error_angle():
@@ -255,17 +496,24 @@ def test_fast_mode_reads_the_environment(monkeypatch):
     assert not fast_mode()
 
 
-def test_a_refused_instruction_in_an_episode_reaches_no_robot(site):
-    from drywall_lab.im import interpret
-    from drywall_lab.rc import carry_out
-
-    words = "Take panel 500300 and put it on stud 500108".split()
-    tags = ["O", "O", "ID_wall", "O", "O", "O", "O", "O", "ID_stud"]
-    refused = interpret(words, tags)
-    assert refused.refusal.reason == "not_on_top"
-    cell = RobotCell()
-    run = carry_out([refused], cell, "one refusal", ["Take panel 500300 and put it on stud 500108."])
+def test_a_refused_instruction_in_an_episode_reaches_no_robot():
+    run = simulate_episode(episode("one refusal", ("500300", "500108")))
     step = run.steps[0]
+    assert step.status == "refused" and step.interpretation.refusal.reason == "not_on_top"
     assert step.result is None and not step.robot_moved and step.sim_time_before == step.sim_time_after
-    assert step.text.endswith("500108.") and run.outcomes() == [{"refusal": "not_on_top"}]
-    assert run.table().outcome.tolist() == ["no motion"] and len(run.history) == 0
+    assert step.text.endswith("500108") and run.outcomes() == [{"refusal": "not_on_top"}]
+    assert run.table().outcome.tolist() == ["no motion"] and len(run.history) == 0 and run.all_placed
+
+
+def test_an_episode_without_gold_tags_needs_a_tagger():
+    with pytest.raises(ValueError, match="give a tagger"):
+        simulate_episode({"id": "e", "instructions": ["Take panel 500320 and put it on stud 500100"]})
+
+
+def test_an_episode_in_a_cell_with_a_partly_built_wall_starts_from_its_history(site):
+    """IM reads the first instruction against the panels already on the cell's wall: no motion, no Refusal."""
+    cell = RobotCell(site.fresh().install("500320", "500100", "vertical_left"))
+    run = simulate_episode(episode("partly built", ("500320", "500104"), ("500310", "500101")), cell=cell)
+    assert [s.interpretation.refusal.reason for s in run.steps] == ["already_installed", "overlap"]
+    assert [c.drywall_id for c in run.history.commands] == ["500320"] and run.history.state == cell.state
+    assert not any(s.robot_moved for s in run.steps)

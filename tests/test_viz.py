@@ -3,6 +3,7 @@ exported as self-contained HTML, keyframe thinning, and the matplotlib fallbacks
 from __future__ import annotations
 
 import base64
+import html
 import re
 
 import matplotlib
@@ -30,24 +31,28 @@ def recorded_cell():
     """A fresh cell whose base drives 0.6 m along the rail, recorded at 10 frames a second."""
     cell = RobotCell(record_fps=10)
     q = cell.scene.q
-    cell.run_stage(cell.planner.base_stage("base_demo", "free", q, q[0] + 0.6))
+    with cell.planner.checking(cell.state):
+        drive = cell.planner.base_stage("base_demo", "free", q, q[0] + 0.6)
+    cell.run_stage(drive)
     cell.hold(0.3)
     return cell
 
 
 @pytest.fixture(scope="module")
-def exported(recorded_cell):
+def exported(recorded_cell, tmp_path_factory):
+    """The recorded animation as a page (``html``) and as a file (``save_html``), and the keyframes kept."""
     scene = viz.MeshcatScene(recorded_cell.scene.model)
     try:
         kept = scene.animate(recorded_cell.recording)
         page = scene.html()
+        saved = scene.save_html(tmp_path_factory.mktemp("viz") / "animation" / "robot.html")
     finally:
         scene.close()
-    return page, kept
+    return page, kept, saved
 
 
 def test_static_html_is_self_contained_with_the_scene_and_the_animation(exported, recorded_cell):
-    page, kept = exported
+    page, kept, _ = exported
     assert page.lstrip().startswith("<!DOCTYPE html>") and "MeshCat.Viewer" in page
     assert not re.search(r'<script[^>]+src=', page)  # the viewer's code is inline: no server, no network
     commands = decode_commands(page)
@@ -64,11 +69,31 @@ def test_static_html_is_self_contained_with_the_scene_and_the_animation(exported
     assert 0 < kept < len(recorded_cell.recording) * len(clips)  # thinned
 
 
-def test_embed_and_save(exported, recorded_cell, tmp_path):
-    page, _ = exported
+def test_saved_html_plays_on_its_own(exported):
+    """The file ``save_html`` writes (its folder created) holds the viewer's code inline and every command
+    of the scene and the animation as data: URLs; the only URL in it is the XHTML namespace."""
+    page, _, saved = exported
+    text = saved.read_text(encoding="utf-8")
+    assert saved.is_file() and text == page
+    assert text.lstrip().startswith("<!DOCTYPE html>") and "MeshCat.Viewer" in text
+    # no script, style sheet, image or frame loaded from elsewhere
+    assert not re.search(r"<(?:script|link|img|iframe|embed|object)\b[^>]*\b(?:src|href|data)\s*=", text)
+    fetched = re.findall(r'fetch\("([^"]*)"\)', text)
+    assert fetched and all(url.startswith("data:application/octet-binary;base64,") for url in fetched)
+    assert set(re.findall(r"https?://[^\s\"'<>)]+", text)) <= {"http://www.w3.org/1999/xhtml"}
+    animations = [c for c in decode_commands(text) if c["type"] == "set_animation"]
+    assert len(animations) == 1
+    clips = {a["path"].split("/")[-1]: a["clip"] for a in animations[0]["animations"]}
+    track = {t["name"]: t for t in clips["carriage"]["tracks"]}[".position"]
+    assert track["keys"][-1]["value"][0] - track["keys"][0]["value"][0] == pytest.approx(0.6, abs=0.01)
+
+
+def test_embedded_page_is_escaped_inside_an_iframe(exported):
+    page, _, _ = exported
     frame = viz.iframe_html(page, 300)
     assert frame.startswith("<div") and 'srcdoc="' in frame and "&quot;" in frame
     assert "<script>" not in frame  # escaped inside the attribute
+    assert html.unescape(frame.split('srcdoc="', 1)[1].split('" style=', 1)[0]) == page
 
 
 def test_keyframes_thin_straight_motion_and_keep_turns():

@@ -8,12 +8,12 @@
 - ``cell``: ``RobotCell``, the simulated site that carries out ``RobotCommand`` s;
 - ``placement``: ``PlacementResult`` and how the placed panel is measured;
 - ``recording``: body poses for animations, joint traces for plots;
-- ``episode``: instructions -> tags -> commands -> motion, episode by episode;
+- ``episode``: instructions -> tags -> commands -> motion, one instruction at a time;
 - ``settings``: time step and the fast mode (``DRYWALL_FAST``).
 """
 from drywall_lab.rc.cell import RobotCell
 from drywall_lab.rc.contacts import ContactEvent
-from drywall_lab.rc.episode import EpisodeRun, EpisodeStep, carry_out, simulate_episode
+from drywall_lab.rc.episode import EpisodeRun, EpisodeStep, goes_on_after, simulate_episode
 from drywall_lab.rc.motion import MotionPlanner, PlacementPlan, PlanningError, Stage
 from drywall_lab.rc.placement import ANGLE_TOLERANCE_DEG, POSITION_TOLERANCE, PlacementResult, pose_error
 from drywall_lab.rc.recording import JointTrace, Recording
@@ -24,6 +24,6 @@ from drywall_lab.rc.settings import fast_mode, record_fps
 __all__ = [
     "ANGLE_TOLERANCE_DEG", "AREAL_DENSITY", "ArmIK", "ContactEvent", "EpisodeRun", "EpisodeStep", "JOINTS",
     "JointTrace", "MotionPlanner", "POSITION_TOLERANCE", "PlacementPlan", "PlacementResult", "PlanningError",
-    "RAIL_Y", "Recording", "RobotCell", "Scene", "Stage", "build_scene", "carry_out", "fast_mode", "panel_mass",
-    "pose_error", "record_fps", "robot_mjcf", "simulate_episode", "site_mjcf",
+    "RAIL_Y", "Recording", "RobotCell", "Scene", "Stage", "build_scene", "fast_mode", "goes_on_after",
+    "panel_mass", "pose_error", "record_fps", "robot_mjcf", "simulate_episode", "site_mjcf",
 ]

@@ -7,6 +7,13 @@ fails before any motion), then drives the simulated robot through it: the joint 
 the planned trajectory with velocity and gravity feed-forward (the payload's weight included
 once it is gripped), the vacuum grips and lets go, the screws fasten the panel where it
 actually is, the contacts are watched, and the placed panel is measured.
+
+Once a placement has begun it ends in a ``PlacementResult``, never an exception: a failed grip
+or a carry that cannot be planned safely from the measured grip lets go of the panel on its
+stack and withdraws the pad; a re-planning error is recorded in the result's ``notes``, and the
+first plan is taken up instead only if it still passes the collision check
+(``MotionPlanner.verified``). Every stage the robot runs has been checked for collisions
+(``run_stage`` refuses any other). ``state`` changes only when the panel is fastened to the wall.
 """
 from __future__ import annotations
 
@@ -17,7 +24,7 @@ import numpy as np
 
 from drywall_lab.im.command import RobotCommand
 from drywall_lab.rc.contacts import ContactWatch
-from drywall_lab.rc.motion import MotionPlanner, PlanningError, Stage, believed_grip
+from drywall_lab.rc.motion import MotionPlanner, PlacementPlan, PlanningError, Stage, believed_grip
 from drywall_lab.rc.placement import PlacementResult, judge, pose_error
 from drywall_lab.rc.recording import JointTrace, Recording
 from drywall_lab.rc.robot import ArmIK, pose_matrix
@@ -90,7 +97,11 @@ class RobotCell:
             self._trace_next = d.time + TRACE_PERIOD
 
     def run_stage(self, stage: Stage) -> None:
-        """Track one stage's trajectory to its end."""
+        """Track one stage's trajectory to its end; a ``ValueError`` (and no motion) for a stage that was not
+        checked for collisions (plan it inside ``MotionPlanner.checking``)."""
+        if not stage.collision_checked:
+            raise ValueError(f"stage {stage.name!r} was not checked for collisions: plan it with "
+                             "MotionPlanner inside MotionPlanner.checking(state)")
         self._stage_name = stage.name
         start = self.time
         t = 0.0
@@ -144,11 +155,14 @@ class RobotCell:
 
     def release(self, command: RobotCommand) -> None:
         """Fasten the panel where it is now (screws: a weld to the wall at its present pose), then let go."""
-        sc = self.scene
-        sc.activate_weld(sc.screws_weld[command.drywall_id])
-        sc.deactivate_weld(sc.grip_weld[command.drywall_id])
+        self.scene.activate_weld(self.scene.screws_weld[command.drywall_id])
+        self.let_go(command, "release")
+
+    def let_go(self, command: RobotCommand, stage_name: str = "let_go") -> None:
+        """Switch the vacuum off: the panel is left where it is (on its stack, unless it was fastened)."""
+        self.scene.deactivate_weld(self.scene.grip_weld[command.drywall_id])
         self._payload = None
-        self._stage_name = "release"
+        self._stage_name = stage_name
         self.hold(VACUUM_TIME)
 
     def _panel_in_tcp(self, drywall_id: str) -> np.ndarray:
@@ -164,49 +178,101 @@ class RobotCell:
         return self.state.install(command.drywall_id, command.stud_id, command.placement)
 
     def execute(self, command: RobotCommand) -> PlacementResult:
-        """Carry out ``command``; a ``Refusal`` is raised before anything moves if the site does not allow it."""
+        """Carry out ``command``; a ``Refusal`` is raised before anything moves if the site does not allow it.
+
+        Once it has begun, a placement that goes wrong ends in a failed ``PlacementResult`` (see
+        ``drywall_lab.rc.placement`` for the reasons) with the robot withdrawn where it can be.
+        """
+        before = self.state
         after = self.check(command)  # Refusal: nothing has moved
         wall_start, sim_start = wallclock.perf_counter(), self.time
         self._trace, self._trace_start, self._trace_next = JointTrace(), sim_start, sim_start
         if self.recording is not None:
             self.recording.caption(sim_start, str(command))
+        notes: list[str] = []
+
+        def finish(failure: str | None, stages: list[Stage], **outcome) -> PlacementResult:
+            base_moves = sum(s.kind == "base" and s.duration > 0 for s in stages)
+            return self._finish(command, sim_start, wall_start, failure, base_moves=base_moves, notes=notes, **outcome)
+
         try:
-            plan = self.planner.plan(command, self._q_set, self.state)
+            plan = self.planner.plan(command, self._q_set, before)
         except PlanningError as e:
-            return self._finish(command, sim_start, wall_start, failure=f"unreachable: {e}")
+            return finish(f"unreachable: {e}", [])
         self.run_stages(plan.before_grip, command)
         self._stage_name = "descend"
         self.hold(1.0, until_settled=True)
         if not self.grip(command):
-            self.run_stages([self.planner.joint_stage("ready", "free", self._q_set,
-                                                      self.planner.ready_posture(self._q_set[0]))], command)
-            return self._finish(command, sim_start, wall_start, failure="grip_failed", base_moves=plan.base_moves)
+            return finish("grip_failed", plan.before_grip, robot_clear=self._withdraw(command, notes))
         held = self._panel_in_tcp(command.drywall_id)
-        # re-plan the carry from the servos' set points with the grip the robot believes it has (from its
-        # joint readings and the site tables)
-        try:
-            carrying = self.planner.replan_carry(command, self._q_set, self._payload[1], self.state, plan.place_station)
-        except PlanningError:
-            carrying = plan.carrying
+        carrying = self._carrying(command, plan, notes)
+        if carrying is None:
+            self.let_go(command)
+            return finish("unreachable: no safe carry from the grip the robot measured", plan.before_grip,
+                          robot_clear=self._withdraw(command, notes))
         self.run_stages(carrying, command)
         self._stage_name = "seat"
         self.hold(1.5, until_settled=True)
         drift = np.linalg.norm(self._panel_in_tcp(command.drywall_id)[:3, 3] - held[:3, 3])
         self.release(command)
-        try:
-            leaving = self.planner.replan_release(command, self._q_set, self.state)
-        except PlanningError:
-            leaving = plan.after_release
-        self.run_stages(leaving, command)
-        self.state = after
+        self.state = after  # the panel is fastened to the wall, where it is
+        leaving = self._leaving(command, plan, before, notes)
+        if leaving is not None:
+            self.run_stages(leaving, command)
         self._stage_name = "settle"
         self.hold(SETTLE_TIME)
-        base_moves = sum(s.kind == "base" and s.duration > 0 for s in plan.before_grip + carrying)
-        return self._finish(command, sim_start, wall_start, failure=None, base_moves=base_moves,
-                            slip_mm=1000 * float(drift), gripped=True)
+        return finish(None if leaving is not None else "retreat_blocked: no safe way back from the panel",
+                      plan.before_grip + carrying, slip_mm=1000 * float(drift), gripped=True, panel_lifted=True,
+                      robot_clear=leaving is not None)
+
+    def _carrying(self, command: RobotCommand, plan: PlacementPlan, notes: list[str]) -> list[Stage] | None:
+        """The carry re-planned from the servos' set points with the grip the robot believes it has (from its
+        joint readings and the site tables); if that fails, the first plan's carry if it is still safe with
+        that grip; None when neither is."""
+        grip = self._payload[1]
+        try:
+            return self.planner.replan_carry(command, self._q_set, grip, self.state, plan.place_station)
+        except PlanningError as e:
+            notes.append(f"re-planning the carry from the measured grip failed: {e}")
+        try:
+            stages = self.planner.verified(plan.carrying, self._q_set, command, self.state, grip=grip)
+        except PlanningError as e:
+            notes.append(f"the first plan's carry is not safe with the measured grip: {e}")
+            return None
+        notes.append("carried as first planned (checked again with the measured grip)")
+        return stages
+
+    def _leaving(self, command: RobotCommand, plan: PlacementPlan, before: SiteState,
+                 notes: list[str]) -> list[Stage] | None:
+        """The retreat re-planned from where the robot seated the panel; if that fails, the first plan's
+        retreat if it starts there and is still safe; None when neither is."""
+        try:
+            return self.planner.replan_release(command, self._q_set, before)
+        except PlanningError as e:
+            notes.append(f"re-planning the retreat failed: {e}")
+        place = pose_matrix(command.place_pose.position, command.place_pose.quaternion)
+        try:
+            stages = self.planner.verified(plan.after_release, self._q_set, command, before, panel_pose=place)
+        except PlanningError as e:
+            notes.append(f"the first plan's retreat cannot be taken up: {e}; the robot stays where it is")
+            return None
+        notes.append("retreated as first planned (checked again)")
+        return stages
+
+    def _withdraw(self, command: RobotCommand, notes: list[str]) -> bool:
+        """The empty pad up off the panel on its stack and the arm to its ready posture; False, and no
+        motion, when no safe way back can be planned."""
+        try:
+            stages = self.planner.plan_withdraw(command, self._q_set, self.state)
+        except PlanningError as e:
+            notes.append(f"no safe way back off the panel: {e}; the robot stays where it is")
+            return False
+        self.run_stages(stages, command)
+        return True
 
     def _finish(self, command: RobotCommand, sim_start: float, wall_start: float, failure: str | None,
-                base_moves: int = 0, slip_mm: float = 0.0, gripped: bool = False) -> PlacementResult:
+                base_moves: int = 0, slip_mm: float = 0.0, gripped: bool = False, panel_lifted: bool = False,
+                robot_clear: bool = True, notes: list[str] | None = None) -> PlacementResult:
         pose = self.scene.panel_pose(command.drywall_id)
         pos_err, ang_err = pose_error(pose, command.place_pose)
         contacts = self.watch.take_events()
@@ -217,11 +283,8 @@ class RobotCell:
             position_error_mm=1000 * pos_err, angle_error_deg=ang_err, slip_mm=slip_mm,
             sim_time=self.time - sim_start, wall_time=wallclock.perf_counter() - wall_start,
             base_moves=base_moves, unexpected_contacts=contacts, trace=self._trace or JointTrace(),
+            panel_lifted=panel_lifted, robot_clear=robot_clear, notes=list(notes or []),
         )
         self._trace = None
         self.results.append(result)
         return result
-
-    def execute_all(self, commands: list[RobotCommand]) -> list[PlacementResult]:
-        """Carry out the commands in order (each checked against the site as the earlier ones left it)."""
-        return [self.execute(c) for c in commands]

@@ -27,6 +27,11 @@ The stages of one placement (``PlacementPlan``):
    reaches it);
 3. vacuum off and screws on, then ``retreat`` (pad 0.2 m back off the panel) and ``ready``.
 
+Every stage is checked for collisions against the site tables before the robot may run it
+(``MotionPlanner.checking``; ``RobotCell`` runs no stage that was not): the stages of the plan,
+the carry and the retreat re-planned from where the robot really is, a planned stage taken up
+again (``verified``), and the way back after a failed grip (``plan_withdraw``).
+
 Positions are sampled along each stage every ``2 cm`` / ``2 deg``, each sample solved by
 ``ArmIK`` from the previous one; the joint path is timed with a minimum-jerk profile under the
 joint speed limits and a Cartesian speed limit for the stage.
@@ -34,7 +39,9 @@ joint speed limits and a Cartesian speed limit for the stage.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from contextlib import contextmanager
+from dataclasses import dataclass, field, replace
+from typing import Iterator
 
 import numpy as np
 
@@ -60,6 +67,10 @@ DROP = 0.004  #: m, the panel is set this far clear of its place and then slid i
 RETREAT = 0.2  #: m, pad back off the installed panel
 LINEAR_STEP, ANGULAR_STEP = 0.02, math.radians(2.0)  #: path sampling
 MAX_JOINT_JUMP = 0.25  #: rad (or m) between two samples: more means the IK switched branches
+#: rad (or m): a stage planned earlier may be taken up this far from where the robot's set points are.
+#: The carry re-planned from the measured grip ends about 2e-5 rad from the first plan's; 2e-4 rad
+#: moves the pad at most about 0.6 mm at full reach.
+RESUME_TOLERANCE = 2e-4
 
 
 class PlanningError(RuntimeError):
@@ -137,6 +148,7 @@ class Stage:
     samples: np.ndarray  # (n + 1, 7)
     duration: float
     tcp_path: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))  # planned TCP positions
+    collision_checked: bool = False  # set by ``MotionPlanner`` once no sample collides
 
     def at(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """Joint positions and velocities at ``t`` seconds into the stage (held after the end)."""
@@ -233,12 +245,34 @@ class MotionPlanner:
         self.site = site
         self.ik = ik or ArmIK()
         self._checker: CollisionChecker | None = None
+        self._check: tuple[CollisionChecker, RobotCommand | None] | None = None
 
     def checker(self, state: SiteState) -> CollisionChecker:
         """The planning scene for ``state`` (rebuilt when the state changes)."""
         if self._checker is None or self._checker.state != state:
             self._checker = CollisionChecker(state)
         return self._checker
+
+    @contextmanager
+    def checking(self, state: SiteState, command: RobotCommand | None = None) -> Iterator[CollisionChecker]:
+        """Check every stage planned inside the block against ``state`` (the site tables, every panel where
+        they put it); ``command``'s panel counts as part of the robot while it is carried.
+
+        >>> from drywall_lab.site import default_site
+        >>> planner = MotionPlanner(default_site())
+        >>> q = planner.ready_posture(0.0)
+        >>> with planner.checking(default_site().fresh()):
+        ...     planner.base_stage("along_the_rail", "free", q, 0.5).collision_checked
+        True
+        """
+        previous = self._check
+        checker = self.checker(state)
+        checker.reset()
+        self._check = (checker, command)
+        try:
+            yield checker
+        finally:
+            self._check = previous
 
     # --- building blocks ---------------------------------------------------------------------
     def solve_path(self, poses: list[np.ndarray], seed: np.ndarray) -> np.ndarray:
@@ -255,15 +289,22 @@ class MotionPlanner:
         return np.array(qs)
 
     def _checked(self, stage: Stage, grip: np.ndarray | None = None, panel_pose: np.ndarray | None = None) -> Stage:
-        """The stage, if no sample of it collides (the carried panel counted as part of the robot)."""
+        """The stage, marked checked, if no sample of it collides (the carried panel counted as part of the
+        robot); a ``PlanningError`` naming the first collision otherwise.
+
+        Every stage the planner makes passes here. Outside ``checking`` there is nothing to check it
+        against: that is a mistake in the calling code, and it raises rather than let an unchecked motion by.
+        """
         if self._check is None:
-            return stage
+            raise RuntimeError(f"stage {stage.name!r} was planned outside MotionPlanner.checking(state): "
+                               "every motion must be checked for collisions")
         checker, command = self._check
         checker.set_context(stage.context, command, grip, panel_pose)
         for q in stage.samples:
             hit = checker.first_collision(q)
             if hit:
                 raise PlanningError(f"{stage.name}: {hit}")
+        stage.collision_checked = True
         return stage
 
     @staticmethod
@@ -309,7 +350,7 @@ class MotionPlanner:
         n = max(1, int(math.ceil(abs(rail_x - q[0]) / LINEAR_STEP)))
         samples = np.array([q + (q_end - q) * k / n for k in range(n + 1)])
         if abs(rail_x - q[0]) < 1e-6:
-            return Stage(name, "base", context, samples[:1], 0.0)
+            return self._checked(Stage(name, "base", context, samples[:1], 0.0), grip=grip, panel_pose=panel_pose)
         return self._checked(timed_stage(name, "base", context, samples, 1.0), grip=grip, panel_pose=panel_pose)
 
     def ready_posture(self, rail_x: float) -> np.ndarray:
@@ -408,17 +449,18 @@ class MotionPlanner:
         def to_wall(q: np.ndarray) -> list[Stage]:
             """to the row, approach (2 cm off the studs), set (onto the studs), seat (the last millimetres)."""
             waiting = (x + dx, y, z + dz)
-            out = [self.panel_stage("to_row", on_floor, q, self._line(transform(R, (x, y + STANDOFF, z_turn)),
-                                                                      transform(R, (x + dx, y + STANDOFF, z + dz))),
+            line = self.samples_between
+            out = [self.panel_stage("to_row", on_floor, q, line(transform(R, (x, y + STANDOFF, z_turn)),
+                                                                transform(R, (x + dx, y + STANDOFF, z + dz))),
                                     grip, 0.5)]
             out.append(self.panel_stage("approach", on_floor, out[-1].end,
-                                        self._line(transform(R, (x + dx, y + STANDOFF, z + dz)),
-                                                   transform(R, (x + dx, y + APPROACH_GAP, z + dz))), grip, 0.3))
+                                        line(transform(R, (x + dx, y + STANDOFF, z + dz)),
+                                             transform(R, (x + dx, y + APPROACH_GAP, z + dz))), grip, 0.3))
             out.append(self.panel_stage("set", "set", out[-1].end,
-                                        self._line(transform(R, (x + dx, y + APPROACH_GAP, z + dz)),
-                                                   transform(R, waiting), step=0.004), grip, 0.03))
-            out.append(self.panel_stage("seat", "set", out[-1].end,
-                                        self._line(transform(R, waiting), place, step=0.001), grip, 0.01))
+                                        line(transform(R, (x + dx, y + APPROACH_GAP, z + dz)), transform(R, waiting),
+                                             step=0.004), grip, 0.03))
+            out.append(self.panel_stage("seat", "set", out[-1].end, line(transform(R, waiting), place, step=0.001),
+                                        grip, 0.01))
             return out
 
         rail_x = q_tilted[0]
@@ -434,11 +476,6 @@ class MotionPlanner:
                 errors.append(f"rail at {place_x:.2f} m: {e}")
         raise PlanningError(f"cannot place panel {command.drywall_id}: " + "; ".join(errors))
 
-    @staticmethod
-    def _line(Ta: np.ndarray, Tb: np.ndarray, step: float = LINEAR_STEP) -> list[np.ndarray]:
-        n = max(1, int(math.ceil(np.linalg.norm(Tb[:3, 3] - Ta[:3, 3]) / step)))
-        return [interpolate_transforms(Ta, Tb, k / n) for k in range(1, n + 1)]
-
     def plan_release(self, command: RobotCommand, q_set: np.ndarray) -> list[Stage]:
         """``retreat`` (the pad straight back off the panel) and ``ready``."""
         place = pose_matrix(command.place_pose.position, command.place_pose.quaternion)
@@ -449,44 +486,65 @@ class MotionPlanner:
         stages.append(self.joint_stage("ready", "free", stages[-1].end, self.ready_posture(q_set[0]), panel_pose=place))
         return stages
 
-    def plan(self, command: RobotCommand, q_now: np.ndarray, state: SiteState,
-             check_collisions: bool = True) -> PlacementPlan:
+    def plan(self, command: RobotCommand, q_now: np.ndarray, state: SiteState) -> PlacementPlan:
         """The whole placement, with the panel assumed where the site tables say; ``PlanningError`` if infeasible.
 
         ``state`` is the site before the command (what is installed, what is stacked).
         """
         thickness = self.site.panel(command.drywall_id).thickness
-        self._check = (self.checker(state), command) if check_collisions else None
-        if self._check:
-            self._check[0].reset()
-        try:
+        with self.checking(state, command):
             before, pick_station = self.plan_pick(command, q_now)
             carrying, place_station = self.plan_carry(command, before[-1].end, grip_transform(thickness), state)
             after = self.plan_release(command, carrying[-1].end)
-        finally:
-            self._check = None
         return PlacementPlan(command, before, carrying, after, pick_station, place_station)
 
     def replan_carry(self, command: RobotCommand, q_grip: np.ndarray, grip: np.ndarray, state: SiteState,
                      station: float) -> list[Stage]:
         """The carrying stages again, from the measured grip, to the station chosen by ``plan``."""
-        self._check = (self.checker(state), command)
-        self._check[0].reset()
-        try:
+        with self.checking(state, command):
             return self.plan_carry(command, q_grip, grip, state, station)[0]
-        finally:
-            self._check = None
 
     def replan_release(self, command: RobotCommand, q_set: np.ndarray, state: SiteState) -> list[Stage]:
         """The release stages from where the robot is after seating the panel."""
-        self._check = (self.checker(state), command)
-        self._check[0].reset()
-        try:
+        with self.checking(state, command):
             return self.plan_release(command, q_set)
-        finally:
-            self._check = None
 
-    _check: tuple[CollisionChecker, RobotCommand] | None = None
+    def plan_withdraw(self, command: RobotCommand, q_now: np.ndarray, state: SiteState) -> list[Stage]:
+        """The empty pad back off a panel it is not taking: ``withdraw`` (straight up ``PRE_PICK``) and ``ready``.
+
+        After a failed grip, or after letting go of a gripped panel whose carry cannot be planned; the
+        panel is where the site tables put it, on its stack.
+        """
+        pick = pose_matrix(command.pick_pose.position, command.pick_pose.quaternion)
+        above = self.ik.fk(q_now)
+        above[2, 3] += PRE_PICK
+        with self.checking(state, command):
+            stages = [self.line_stage("withdraw", "pick", q_now, above, 0.2, panel_pose=pick)]
+            stages.append(self.joint_stage("ready", "free", stages[-1].end, self.ready_posture(q_now[0]),
+                                           panel_pose=pick))
+        return stages
+
+    def verified(self, stages: list[Stage], q_now: np.ndarray, command: RobotCommand, state: SiteState,
+                 grip: np.ndarray | None = None, panel_pose: np.ndarray | None = None) -> list[Stage]:
+        """Stages planned earlier, if the robot can still run them: a ``PlanningError`` unless they start
+        within ``RESUME_TOLERANCE`` of ``q_now`` and no sample collides when checked again against ``state``.
+
+        ``grip`` is the panel in the TCP frame as the robot now believes it holds it (for carrying
+        stages); ``panel_pose`` puts the command's panel for stages that do not carry it. The first
+        stage is returned starting exactly at ``q_now``, so that the set points do not jump.
+        """
+        if not stages:
+            return []
+        gap = float(np.max(np.abs(stages[0].samples[0] - q_now)))
+        if gap > RESUME_TOLERANCE:
+            raise PlanningError(f"{stages[0].name}: the planned motion starts {gap:.2e} rad (or m) away from where "
+                                f"the robot is (at most {RESUME_TOLERANCE:g})")
+        first = stages[0].samples.copy()
+        first[0] = q_now
+        taken_up = [replace(stages[0], samples=first, collision_checked=False)]
+        taken_up += [replace(s, collision_checked=False) for s in stages[1:]]
+        with self.checking(state, command):
+            return [self._checked(s, grip=grip, panel_pose=panel_pose) for s in taken_up]
 
 
 def believed_grip(ik: ArmIK, q: np.ndarray, command: RobotCommand) -> np.ndarray:

@@ -5,6 +5,20 @@ no unexpected contact happened (``drywall_lab.rc.contacts``), and, measured afte
 release and a short settle, the panel's centre lies within ``POSITION_TOLERANCE`` of the
 command's place pose and its orientation within ``ANGLE_TOLERANCE_DEG``. A panel that ends
 off its pose is a failure, whatever the robot believed it did.
+
+The reasons a placement fails (``PlacementResult.failure``; the code before any colon):
+
+- ``unreachable``: no collision-free motion, found while planning; before any motion, or with the
+  panel gripped on its stack when neither the carry re-planned from the measured grip nor the
+  first plan's carry is safe (the vacuum then lets go and the pad withdraws);
+- ``grip_failed``: the pad did not seal on the panel (the pad withdraws);
+- ``slipped``, ``off_pose``, ``collision``: measured once the panel was fastened (see above);
+- ``retreat_blocked``: the panel is fastened but no safe way back from it could be planned, so the
+  robot stays where it stopped.
+
+``panel_lifted`` says whether the panel left its stack and ``robot_clear`` whether the robot
+ended in its ready posture; ``notes`` records what did not go as first planned (a re-planning
+error, a plan taken up again), for the worker and the episode table.
 """
 from __future__ import annotations
 
@@ -57,6 +71,9 @@ class PlacementResult:
     base_moves: int
     unexpected_contacts: list[ContactEvent] = field(default_factory=list)
     trace: JointTrace = field(default_factory=JointTrace)
+    panel_lifted: bool = False  #: the panel left its stack
+    robot_clear: bool = True  #: the robot ended in its ready posture (False: it stopped where it was)
+    notes: list[str] = field(default_factory=list)  #: re-planning errors and plans taken up again
 
     @property
     def realtime_factor(self) -> float:
@@ -79,12 +96,14 @@ class PlacementResult:
             "unexpected_contacts": len(self.unexpected_contacts),
             "sim_s": round(self.sim_time, 2),
             "wall_s": round(self.wall_time, 2),
+            "notes": "; ".join(self.notes),
         }
 
     def __str__(self) -> str:
         status = "placed" if self.success else f"FAILED ({self.failure})"
+        notes = f" ({'; '.join(self.notes)})" if self.notes else ""
         return (f"{self.command}: {status}; error {self.position_error_mm:.2f} mm, {self.angle_error_deg:.3f} deg; "
-                f"{self.sim_time:.1f} s simulated in {self.wall_time:.1f} s")
+                f"{self.sim_time:.1f} s simulated in {self.wall_time:.1f} s{notes}")
 
 
 def judge(grip_ok: bool, slip_mm: float, contacts: list[ContactEvent], pos_mm: float, ang_deg: float) -> str | None:

@@ -170,13 +170,6 @@ def pose_matrix(position, quaternion) -> np.ndarray:
     return T
 
 
-def matrix_quaternion(T: np.ndarray) -> np.ndarray:
-    """The (w, x, y, z) quaternion of a transform's rotation."""
-    q = np.zeros(4)
-    mujoco.mju_mat2Quat(q, np.ascontiguousarray(T[:3, :3]).reshape(9))
-    return q
-
-
 def grip_transform(thickness: float) -> np.ndarray:
     """The panel's pose in the TCP frame when the pad is centred on the panel's +y face.
 

@@ -6,14 +6,12 @@ half a stud 0.01905, H = 2.4384), not read from the project's tables.
 """
 from __future__ import annotations
 
-import math
-
 import pandas as pd
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from drywall_lab.corpus import SPLITS, read_corpus
+from drywall_lab.corpus import SPLITS, read_corpus, read_split
 from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import COREF_TAGS
 from drywall_lab.errors import Refusal
@@ -75,9 +73,49 @@ def test_ordinal_of(word, n):
 
 
 @pytest.mark.parametrize("words, n", [("second to the left", 2), ("two places to the right", 2),
-                                      ("one over to the right", 1), ("just to the right", None), ("3rd left", 3)])
-def test_count_in(words, n):
-    assert W.count_in(words.split()) == n
+                                      ("one over to the right", 1), ("just to the right", None), ("3rd left", 3),
+                                      ("2nd one to the left", 2),  # "one" after an ordinal is the generic noun
+                                      ("zero to the right", 0), ("0 places to the left", 0),
+                                      ("fourteen to the right", 14), ("15th to the left", 15)])
+def test_one_count(words, n):
+    assert W.one_count(words.split(), "'...'", "stud") == n
+
+
+@pytest.mark.parametrize("words, counts", [
+    ("2nd one to the left", [2]),
+    ("one over to the left", [1]),
+    ("second two to the right", [2, 2]),
+    ("third four to the right", [3, 4]),
+    ("zero to the right", [0]),
+    ("just to the right", []),
+])
+def test_counts_in(words, counts):
+    assert W.counts_in(words.split()) == counts
+
+
+def test_two_counts_are_refused():
+    with pytest.raises(Refusal) as info:
+        W.one_count("second three to the right".split(), "'second three to the right'", "stud")
+    assert (info.value.reason, info.value.message) == (
+        "undetermined", "'second three to the right' gives two counts, 2 and 3: which stud?")
+
+
+@pytest.mark.parametrize("markup, index", [
+    ("zero studs to/St_loc1 the/St_loc1 right/St_loc1", 0),
+    ("two panels over to/Dw_loc1 the/Dw_loc1 left/Dw_loc1", 0),
+    ("the 3rd stud from/St_loc1 the/St_loc1 right/St_loc1", 1),
+    ("it is the one left/Dw_loc1", None),                # "one": the generic noun
+    ("the stud 500104 to/St_loc1 the/St_loc1 right/St_loc1", None),  # an id is not a count
+    ("the 4/width by 8/length panel left/Dw_loc1", None),  # tagged: not an untagged count
+    ("two/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1", None),
+    ("two studs right/St_loc1 of 500104/St_loc2 , no , three/St_loc1", None),  # the position has its count
+    ("number 2 stud first/St_loc1", None),               # a list number before an ordinal
+    ("number 2 stud middle/St_loc1", None),              # the middle takes no count
+])
+def test_untagged_count_before(markup, index):
+    ti = tagged(markup)
+    tag = "St_loc1" if "St_loc1" in ti.tags else "Dw_loc1"
+    assert W.untagged_count_before(ti.words, ti.tags, tag) == index
 
 
 def test_ids_in_keeps_order_and_drops_repeats():
@@ -104,6 +142,10 @@ TARGETS = [
     ("the full-size/dim drywall", (), "500320"),
     ("a Standard/dim panel", (), "500320"),
     ("a regular/dim size/dim board", (), "500320"),
+    ("a full/dim size/dim board", (), "500320"),
+    ("the full-sized/dim panel", (), "500320"),
+    ("a normal/dim sized/dim panel", (), "500320"),
+    ("the one matching/dim the last/dim one", (("500321", "500100", "vertical_left"),), "500311"),
     ("the same/dim size as the previous/dim one", (("500321", "500100", "vertical_left"),), "500311"),
     ("the same/dim kind as last/dim time/dim", (("500322", "500100", "vertical_left"),), "500312"),
     # rule 4: stack positions
@@ -122,6 +164,12 @@ TARGETS = [
     ("the panel second/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1 of panel 500310/Dw_loc2", (), "500322"),
     ("the panel two/Dw_loc1 places/Dw_loc1 to/Dw_loc1 the/Dw_loc1 left/Dw_loc1 of 500302/Dw_loc2", (), "500320"),
     ("the panel left/Dw_loc1 of the previous/Dw_loc2 one", (("500322", "500100", "vertical_left"),), "500321"),
+    ("it is the one left/Dw_loc1 of 500301/Dw_loc2", (), "500320"),  # "one" untagged: the generic noun
+    # "zero", "0" and "same" mean 0 places: the anchor's own stack
+    ("the panel zero/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1 of 500300/Dw_loc2", (), "500320"),
+    ("the panel 0/Dw_loc1 places/Dw_loc1 to/Dw_loc1 the/Dw_loc1 left/Dw_loc1 of 500311/Dw_loc2", (), "500321"),
+    ("a panel from the same/Dw_loc1 stack as the previous/Dw_loc2 one", (("500322", "500100", "vertical_left"),),
+     "500312"),
     # the first rule that applies wins: an id over a size
     ("panel 500311/ID_wall , the 4/width by 8/length", (), "500311"),
 ]
@@ -148,6 +196,28 @@ TARGET_REFUSALS = [
     ("the panel in the fourth/Dw_loc1 stack", (), "off_the_end"),
     ("the panel next to 500301/Dw_loc2", (), "undetermined"),
     ("the panel left/Dw_loc1 and right/Dw_loc1", (), "undetermined"),
+    # a count or ordinal the position rules cannot place is refused, never dropped
+    ("the second/Dw_loc1 panel from the right/Dw_loc1", (), "undetermined"),     # "from" untagged
+    ("the first/Dw_loc1 panel on the left/Dw_loc1", (), "undetermined"),
+    ("the second/Dw_loc1 panel in the middle/Dw_loc1", (), "undetermined"),
+    ("the second/Dw_loc1 last/Dw_loc1 stack", (), "undetermined"),
+    ("the second/Dw_loc1 panel from/Dw_loc1 the/Dw_loc1 end/Dw_loc1", (), "undetermined"),
+    ("the second/Dw_loc1 third/Dw_loc1 stack", (), "undetermined"),
+    ("the middle/Dw_loc1 panel on the left/Dw_loc1", (), "undetermined"),
+    # a relative phrase without an anchor: nothing to count from
+    ("the panel two/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1", (), "undetermined"),
+    ("the panel one/Dw_loc1 over/Dw_loc1 to/Dw_loc1 the/Dw_loc1 left/Dw_loc1", (), "undetermined"),
+    ("the panel just/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1", (), "undetermined"),
+    ("the panel two/Dw_loc1 from/Dw_loc1 the/Dw_loc1 left/Dw_loc1", (), "undetermined"),
+    ("the same/Dw_loc1 stack", (("500322", "500100", "vertical_left"),), "undetermined"),
+    ("two panels over to/Dw_loc1 the/Dw_loc1 right/Dw_loc1 of 500300/Dw_loc2", (), "undetermined"),
+    # a lone "size" names no size
+    ("the size/dim panel", (), "undetermined"),
+    ("a panel sized/dim for the wall", (), "undetermined"),
+    # two counts in one relative phrase; "same" with a count
+    ("the panel second/Dw_loc1 three/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1 of 500300/Dw_loc2", (), "undetermined"),
+    ("the same/Dw_loc1 stack two/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1 of the previous/Dw_loc2 one",
+     (("500320", "500100", "vertical_left"),), "undetermined"),
     ("the 2/width by 8/length panel", (("500321", "500100", "vertical_left"), ("500311", "500102", "vertical_left"),
                                         ("500301", "500104", "vertical_left")), "stack_empty"),
 ]
@@ -159,6 +229,19 @@ def test_target_refusals(markup, history, reason):
         resolve_target(tagged(markup), context(*history))
     assert info.value.reason == reason
     assert len(info.value.message) > 20
+
+
+def test_ordinal_without_from_says_what_is_missing():
+    with pytest.raises(Refusal) as info:
+        resolve_target(tagged("the second/Dw_loc1 panel from the right/Dw_loc1"), context())
+    assert info.value.message == ("'second panel from the right' does not say whether to count from the right end "
+                                  "or to the right of another stack: which stack?")
+
+
+def test_lone_size_word_says_what_is_missing():
+    with pytest.raises(Refusal) as info:
+        resolve_target(tagged("the size/dim panel"), context())
+    assert info.value.message.startswith("'the size' does not say which size")
 
 
 def test_ambiguous_size_says_which_panels():
@@ -202,6 +285,17 @@ STUDS = [
     ("the stud right/St_loc1 of the stud you used last/St_loc2", (("500320", "500104", "vertical_left"),), "500105"),
     ("the stud third/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of the last/St_loc2 stud you used",
      (("500320", "500104", "vertical_left"),), "500107"),
+    ("the stud left/St_loc1 of the first/St_loc2 stud from/St_loc2 the/St_loc2 right/St_loc2", (), "500111"),
+    # words the corpus uses: "halfway", "furthest", "counting"
+    ("the stud halfway/St_loc1 along", (), "500106"),
+    ("the stud furthest/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1", (), "500100"),
+    ("the 4th/St_loc1 stud counting/St_loc1 from/St_loc1 the/St_loc1 right/St_loc1", (), "500109"),
+    # "zero", "0" and "same" mean 0 places: the anchor itself (spec section 3)
+    ("the stud zero/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of 500104/St_loc2", (), "500104"),
+    ("the stud 0/St_loc1 places/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of 500104/St_loc2", (), "500104"),
+    ("the stud zero/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of the previous/St_loc2 one",
+     (("500320", "500104", "vertical_left"),), "500104"),
+    ("the stud twelve/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of 500112/St_loc2", (), "500100"),
 ]
 
 
@@ -221,6 +315,38 @@ STUD_REFUSALS = [
     ("the same/St_loc1 stud as the previous/St_loc2 one", (), "no_history"),
     ("the stud next to 500104/St_loc2", (), "undetermined"),
     ("the stud near/St_loc1 500104/St_loc2", (), "undetermined"),
+    # a count or ordinal the position rules cannot place is refused, never dropped
+    ("the third/St_loc1 stud left/St_loc1", (), "undetermined"),
+    ("the third/St_loc1 stud from the right/St_loc1", (), "undetermined"),       # "from" untagged
+    ("the first/St_loc1 stud on the left/St_loc1", (), "undetermined"),
+    ("the second/St_loc1 stud in the middle/St_loc1", (), "undetermined"),
+    ("the second/St_loc1 last/St_loc1 stud", (), "undetermined"),
+    ("the second/St_loc1 stud from/St_loc1 the/St_loc1 end/St_loc1", (), "undetermined"),
+    ("the second/St_loc1 third/St_loc1 stud", (), "undetermined"),
+    ("the middle/St_loc1 stud on the right/St_loc1", (), "undetermined"),
+    # a relative phrase without an anchor: nothing to count from
+    ("the stud three/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1", (), "undetermined"),
+    ("the stud two/St_loc1 places/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1", (), "undetermined"),
+    ("the stud just/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1", (), "undetermined"),
+    ("the stud three/St_loc1 from/St_loc1 the/St_loc1 left/St_loc1", (), "undetermined"),
+    ("the stud 500104/St_loc1 to the right/St_loc1", (), "undetermined"),
+    ("the same/St_loc1 stud on the left/St_loc1", (("500320", "500104", "vertical_left"),), "undetermined"),
+    ("the fourteenth/St_loc1 stud", (), "off_the_end"),
+    # a count left untagged right before the position would be dropped: refused
+    ("zero studs to/St_loc1 the/St_loc1 right/St_loc1 of 500104/St_loc2", (), "undetermined"),
+    ("three to/St_loc1 the/St_loc1 left/St_loc1", (), "undetermined"),
+    ("the 2nd stud from/St_loc1 the/St_loc1 right/St_loc1", (), "undetermined"),
+    ("the stud thirteen/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of 500112/St_loc2", (), "off_the_end"),
+    # an anchor the guidelines do not name (an id, an end, the previous stud) is not guessed
+    ("the stud two/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of the fourth/St_loc2 stud", (), "undetermined"),
+    ("the stud right/St_loc1 of the third/St_loc2 from/St_loc2 the/St_loc2 left/St_loc2", (), "undetermined"),
+    ("the stud right/St_loc1 of the middle/St_loc2 stud", (), "undetermined"),
+    ("the stud right/St_loc1 of the previous/St_loc2 leftmost/St_loc2 stud", (("500320", "500104", "vertical_left"),),
+     "undetermined"),
+    # two counts in one relative phrase; "same" with a count
+    ("the stud second/St_loc1 three/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of 500104/St_loc2", (), "undetermined"),
+    ("the same/St_loc1 stud two/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of the previous/St_loc2 one",
+     (("500320", "500104", "vertical_left"),), "undetermined"),
 ]
 
 
@@ -229,6 +355,24 @@ def test_stud_refusals(markup, history, reason):
     with pytest.raises(Refusal) as info:
         resolve_stud(tagged(markup), context(*history))
     assert info.value.reason == reason
+    assert len(info.value.message) > 20
+
+
+@pytest.mark.parametrize("markup, message", [
+    ("put the standard/dim panel on the third/St_loc1 stud left/St_loc1",
+     "'third stud left' does not say whether to count from the left end or to the left of another stud: "
+     "which stud?"),
+    ("put the standard/dim panel three/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1",
+     "'three to the left' counts from another stud but does not say which one: which stud?"),
+    ("put the standard/dim panel on the second/St_loc1 stud in the middle/St_loc1",
+     "'second stud in the middle' gives a count and the middle: which stud?"),
+    ("put the standard/dim panel zero studs to/St_loc1 the/St_loc1 right/St_loc1 of 500104/St_loc2",
+     "In 'zero studs to the right' I could not tell whether 'zero' is the count: which stud?"),
+])
+def test_unplaceable_stud_positions_say_what_is_missing(markup, message):
+    result = interpret(*_wt(markup))
+    assert result.command is None
+    assert (result.refusal.reason, result.refusal.message) == ("undetermined", message)
 
 
 # --- placement ---------------------------------------------------------------------------------
@@ -350,12 +494,14 @@ def test_history_records_only_accepted_commands():
     assert first.accepted and len(im.history) == 1
     before = im.history.frame
     state_before = im.history.state
-    for markup in ("panel 500320/ID_wall on stud 500104/ID_stud",          # already installed
-                   "panel 500300/ID_wall on stud 500104/ID_stud",          # not on top
-                   "the full-size/dim drywall on stud 500101/ID_stud",     # overlap
-                   "the full-size/dim drywall on stud 500112/ID_stud"):    # past the wall's end
+    for markup, reason in [("panel 500320/ID_wall on stud 500104/ID_stud", "already_installed"),
+                           ("panel 500300/ID_wall on stud 500104/ID_stud", "not_on_top"),
+                           ("the full-size/dim drywall on stud 500101/ID_stud", "overlap"),
+                           ("the full-size/dim drywall on stud 500112/ID_stud", "past_wall_end")]:
         r = im.apply(*_wt(markup))
         assert not r.accepted
+        assert r.refusal.reason == reason, (markup, r.refusal)
+        assert r.trace.steps[-1].conclusion.startswith(f"refused ({reason}): ")
         pd.testing.assert_frame_equal(im.history.frame, before)
         assert im.history.state == state_before
     # "previous" means the last accepted command, never a refused one
@@ -415,32 +561,72 @@ def test_history_csv_that_is_not_a_csv(tmp_path):
 
 
 # --- property-based: any words with any tags ------------------------------------------------------------
-VOCABULARY = ["the", "panel", "stud", "left", "right", "middle", "centre", "second", "2nd", "two", "three", "of",
-              "to", "from", "same", "previous", "last", "very", "first", "full-size", "standard", "4", "8", "2", "6",
-              "4x8", "by", "line", "top", "row", "500100", "500107", "500112", "500113", "500300", "500320",
-              "500321", "500322", "500330", "", "!!", "ünïcode", "0", "99999999999999999999"]
+REAL_INSTRUCTIONS = [row["words"] for row in read_split("validation")]
+REAL_TAGS = {tuple(row["words"]): row["tags"] for row in read_split("validation")}
+VOCABULARY = sorted(
+    {"the", "panel", "stud", "stack", "of", "to", "from", "places", "over", "one", "by", "line", "row", "end", "4",
+     "8", "2", "6", "4x8", "zero", "0", "two", "three", "thirteen", "fifteen", "second", "2nd", "third", "13th",
+     "fourteenth", "500100", "500107", "500112", "500113", "500300", "500320", "500321", "500322", "500330", "",
+     "!!", "ünïcode", "99999999999999999999", "size", "sized", "top", "bottom", "middle"}
+    | W.LEFT_WORDS | W.RIGHT_WORDS | W.MIDDLE_WORDS | W.BACK_REFERENCE_WORDS | W.STANDARD_SIZE_WORDS
+    | W.END_WORDS | W.RELATIVE_WORDS | W.SIZE_WORDS
+)
 word_lists = st.lists(st.one_of(st.sampled_from(VOCABULARY), st.text(max_size=8)), max_size=25)
 
 
 @st.composite
 def tagged_instructions(draw):
-    words = draw(word_lists)
-    tags = draw(st.lists(st.sampled_from(COREF_TAGS), min_size=len(words), max_size=len(words)))
+    """Any words with any tags: random words, or a real instruction with random tags or its gold tags, a few changed."""
+    kind = draw(st.sampled_from(["random words", "real words, random tags", "real words, gold tags changed"]))
+    words = draw(word_lists) if kind == "random words" else list(draw(st.sampled_from(REAL_INSTRUCTIONS)))
+    if kind != "real words, gold tags changed":
+        return words, draw(st.lists(st.sampled_from(COREF_TAGS), min_size=len(words), max_size=len(words)))
+    tags = list(REAL_TAGS[tuple(words)])
+    for i, tag in draw(st.lists(st.tuples(st.integers(0, len(words) - 1), st.sampled_from(COREF_TAGS)), max_size=3)):
+        tags[i] = tag
     return words, tags
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.lists(tagged_instructions(), min_size=1, max_size=8))
-def test_any_tags_give_a_command_or_a_refusal(instructions):
+def _decisions(trace, stage):
+    """The trace's steps at ``stage`` that decided something (applied and did not refuse)."""
+    return [s for s in trace if s.stage == stage and s.applies and not s.conclusion.startswith("refused")]
+
+
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(tagged_instructions(), min_size=1, max_size=6))
+def test_a_command_comes_only_from_decisions_and_passed_checks(instructions):
+    """Spec sections 3-5: a command only when target, destination and placement were decided by a rule and the site
+    checks C1/C2 passed; otherwise a refusal with a known reason and a message; the history grows by exactly the
+    accepted command's row, and only then."""
+    from drywall_lab.errors import REFUSAL_REASONS
+
     im = InformationMapper()
     for words, tags in instructions:
         before_frame, before_state = im.history.frame, im.history.state
-        result = im.apply(words, tags)  # never raises
+        result = im.apply(words, tags)  # returns, never raises
         assert (result.command is None) != (result.refusal is None)
+        last_step = result.trace.steps[-1]
         if result.refusal is not None:
-            assert isinstance(result.refusal, Refusal) and result.refusal.message
+            assert result.refusal.reason in REFUSAL_REASONS and result.refusal.message.strip()
+            assert last_step.conclusion == f"refused ({result.refusal.reason}): {result.refusal.message}"
             pd.testing.assert_frame_equal(im.history.frame, before_frame)
             assert im.history.state == before_state
+            continue
+        command = result.command
+        (target,) = _decisions(result.trace, "target")
+        (destination,) = _decisions(result.trace, "destination")
+        (placement,) = _decisions(result.trace, "placement")
+        assert target.rule.startswith("T") and command.drywall_id in target.conclusion
+        assert destination.rule.startswith("S") and command.stud_id in destination.conclusion
+        assert placement.conclusion == command.placement.value or (
+            placement.rule == "P2 default" and command.placement is Placement.VERTICAL_LEFT)
+        checks = _decisions(result.trace, "check")
+        assert [s.rule for s in checks] == ["C1 panel can be picked", "C2 panel fits on the wall"]
+        assert [s.rule for s in result.trace if s.stage == "check"] == [s.rule for s in checks]
+        after = im.history.frame
+        assert len(after) == len(before_frame) + 1
+        assert after.to_dict("records") == before_frame.to_dict("records") + [result.history_row]
+        assert im.history.state != before_state
     installed = im.history.state.installed
     for i, a in enumerate(installed):
         assert a.rect.x_right <= WALL_END + 1e-6 and a.rect.x_left >= -HALF - 1e-6
@@ -451,22 +637,64 @@ def test_any_tags_give_a_command_or_a_refusal(instructions):
             assert overlap_x <= 1e-6 or overlap_z <= 1e-6
 
 
-@settings(max_examples=200, deadline=None)
-@given(st.sampled_from(["500100", "500101", "500105", "500109", "500112"]),
-       st.integers(min_value=0, max_value=15), st.sampled_from(["left", "right"]),
-       st.sampled_from(["{n}", "{o}", "{n} places", "{o}"]))
-def test_relative_studs_count_from_the_anchor(anchor, count, direction, form):
-    from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_WORDS
+# Number words and ordinals written out here, not read from the project's word lists.
+COUNT_WORDS = ("zero one two three four five six seven eight nine ten eleven twelve thirteen fourteen "
+               "fifteen").split()
+ORDINAL_WORDS = ("zeroth first second third fourth fifth sixth seventh eighth ninth tenth eleventh twelfth "
+                 "thirteenth fourteenth fifteenth").split()
+ORDINAL_SUFFIX = {1: "st", 2: "nd", 3: "rd", 11: "th", 12: "th", 13: "th"}
 
-    if count == 0 or count not in NUMBER_WORDS or count not in ORDINAL_WORDS:
-        count = 1
-    words = form.format(n=NUMBER_WORDS[count], o=ORDINAL_WORDS[count]).split() + ["to", "the", direction]
-    markup = "the stud " + " ".join(f"{w}/St_loc1" for w in words) + f" of {anchor}/St_loc2"
-    index = int(anchor) - 500100 + (count if direction == "right" else -count)
+
+def _count_phrases(count: int, direction: str) -> list[str]:
+    """Every way the test says "``count`` places to the ``direction``"."""
+    digits = f"{count}{ORDINAL_SUFFIX.get(count, 'th')}"
+    forms = [f"{COUNT_WORDS[count]} to the {direction}", f"{count} to the {direction}",
+             f"{COUNT_WORDS[count]} places to the {direction}", f"{count} over to the {direction}"]
+    if count > 0:
+        forms += [f"{ORDINAL_WORDS[count]} to the {direction}", f"{digits} {direction}",
+                  f"{ORDINAL_WORDS[count]} one to the {direction}"]
+    else:
+        forms += ["same"]
+    return forms
+
+
+def _tag_all(phrase: str, tag: str) -> str:
+    return " ".join(f"{w}/{tag}" for w in phrase.split())
+
+
+@pytest.mark.parametrize("direction", ["left", "right"])
+@pytest.mark.parametrize("count", range(16))
+@settings(max_examples=12, deadline=None)
+@given(anchor=st.integers(min_value=0, max_value=12), data=st.data())
+def test_relative_studs_count_from_the_anchor(count, direction, anchor, data):
+    """Spec section 3: the anchor moved by the count (0 for "zero", "0", "same"); off the wall is ``off_the_end``."""
+    phrase = data.draw(st.sampled_from(_count_phrases(count, direction)))
+    anchor_id = str(500100 + anchor)
+    markup = f"the stud {_tag_all(phrase, 'St_loc1')} as {anchor_id}/St_loc2"
+    index = anchor + (count if direction == "right" else -count)
     if 0 <= index <= 12:
         assert resolve_stud(tagged(markup), context()) == str(500100 + index)
     else:
         with pytest.raises(Refusal) as info:
             resolve_stud(tagged(markup), context())
         assert info.value.reason == "off_the_end"
-    assert math.isfinite(index)
+        assert info.value.message.startswith("There is no stud ")
+
+
+@pytest.mark.parametrize("direction", ["left", "right"])
+@pytest.mark.parametrize("count", range(16))
+@settings(max_examples=12, deadline=None)
+@given(anchor=st.integers(min_value=0, max_value=2), data=st.data())
+def test_relative_stacks_count_from_the_anchor(count, direction, anchor, data):
+    """Spec section 3: the anchor panel's stack moved by the count; the panel is the top of that stack now."""
+    phrase = data.draw(st.sampled_from(_count_phrases(count, direction)))
+    anchor_id = data.draw(st.sampled_from([f"5003{level}{anchor}" for level in range(3)]))
+    markup = f"the panel {_tag_all(phrase, 'Dw_loc1')} as {anchor_id}/Dw_loc2"
+    index = anchor + (count if direction == "right" else -count)
+    if 0 <= index <= 2:
+        assert resolve_target(tagged(markup), context()) == f"50032{index}"  # top of the stack on a fresh site
+    else:
+        with pytest.raises(Refusal) as info:
+            resolve_target(tagged(markup), context())
+        assert info.value.reason == "off_the_end"
+        assert info.value.message.startswith("There is no stack ")

@@ -266,8 +266,4 @@ def direction_phrase(ch: Chooser, direction: str, count: int, tag: str) -> Phras
     return tagged(words, tag)
 
 
-def with_tag(words: str, tag: str) -> Phrase:
-    return tagged(words, tag)
-
-
-__all__ = [name for name in dir() if name.isupper()] + ["Chooser", "direction_phrase", "with_tag", "Token", "plain"]
+__all__ = [name for name in dir() if name.isupper()] + ["Chooser", "direction_phrase", "Token", "plain"]

@@ -5,11 +5,18 @@ Three rules, tried in order:
 1. ``ID_stud``: that stud.
 2. ``St_loc1`` alone: a stud named by where it is on the wall: leftmost/first,
    rightmost/last, middle/centre, "n-th from the left/right", or a bare ordinal
-   ("the third stud", counted from the left).
+   ("the third stud", counted from the left). What the rule cannot place with
+   certainty is refused as ``undetermined``, never read by dropping a word: an
+   ordinal with a side but no "from" ("the third stud left": from the left end, or
+   to the left of another stud?), a step with no anchor tagged ("three to the
+   left", "just to the right"), a count with the middle or with "last"
+   (``words.line_position``).
 3. ``St_loc1`` + ``St_loc2``: ``St_loc1`` is a direction with an optional count
-   (default 1; "same" is 0), ``St_loc2`` the anchor: a stud id, the leftmost or
-   rightmost stud, or the previous stud (the stud of the last accepted command).
-   "second to the left of 500109" is 500107.
+   (default 1; "zero", "0" and "same" are 0: the anchor itself), ``St_loc2`` the
+   anchor: a stud id, the leftmost or rightmost stud, or the previous stud (the stud
+   of the last accepted command). "second to the left of 500109" is 500107. Two
+   counts, or an anchor that is none of these ("the fourth", "the third from the
+   left"), are ``undetermined``.
 """
 from __future__ import annotations
 
@@ -28,10 +35,6 @@ def _stud_at(ctx: MappingContext, index: int, said: str) -> Stud:
             f"There is no stud {said}: the wall has {len(studs)} studs, {studs[0].stud_id} to {studs[-1].stud_id}.",
         )
     return studs[index]
-
-
-def _ordinal(words: list[str]) -> int | None:
-    return next((n for n in map(W.ordinal_of, words) if n is not None), None)
 
 
 # --- rule 1 ---------------------------------------------------------------------------
@@ -54,28 +57,13 @@ def stud_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | N
     """Rule 2 (Fig. 12): ``St_loc1`` alone names a stud by where it is on the wall."""
     if not ti.has("St_loc1") or ti.has("St_loc2"):
         return None
-    said = ti.words_with("St_loc1")
-    quoted = W.quote(ti.phrase("St_loc1"))
-    n = len(ctx.site.studs)
-    sides = W.sides_in(said)
-    nth = _ordinal(said)
-    if len(sides) > 1:
-        raise Refusal("undetermined", f"{quoted} names both the left and the right: which stud?")
-    side = next(iter(sides), None)
-    if nth is not None and side is not None and W.says_from(said):
-        stud = _stud_at(ctx, nth - 1 if side == "left" else n - nth, quoted)
-        how = f"{nth} counted from the {side}"
-    elif W.says_middle(said):
-        stud, how = ctx.site.studs[n // 2], "the middle stud"
-    elif side is not None:
-        stud = ctx.site.studs[0 if side == "left" else n - 1]
-        how = f"the {side}most stud"
-    elif nth is not None:
-        stud, how = _stud_at(ctx, nth - 1, quoted), f"{nth} counted from the left"
-    elif W.says_last(said):
-        stud, how = ctx.site.studs[-1], "the last stud"
-    else:
+    ti.require_count_tagged("St_loc1", "stud")
+    position = W.line_position(ti.words_with("St_loc1"), W.quote(ti.span("St_loc1")), len(ctx.site.studs), "stud")
+    if position is None:
         return None
+    index, how = position
+    quoted = W.quote(ti.phrase("St_loc1"))
+    stud = _stud_at(ctx, index, quoted)
     return Decision(stud.stud_id, f"{quoted}: {how} -> stud {stud.stud_id}")
 
 
@@ -90,32 +78,43 @@ def _anchor(ti: TaggedInstruction, ctx: MappingContext) -> tuple[Stud, str]:
     if ids:
         stud = ctx.site.stud(ids[0])
         return stud, f"stud {stud.stud_id}"
-    sides = W.sides_in(said)
-    if len(sides) == 1:
-        side = next(iter(sides))
-        return ctx.site.studs[0 if side == "left" else -1], f"the {side}most stud"
-    if _ordinal(said) == 1:
-        return ctx.site.studs[0], "the first (leftmost) stud"
-    if W.says_last(said) and W.says_end(said):  # "the very last stud", not "the stud you used last"
-        return ctx.site.studs[-1], "the last (rightmost) stud"
-    if W.back_reference_words(said):
+    if W.back_reference_words(said) and not (W.says_last(said) and W.says_end(said)):  # not "the very last stud"
+        if W.counts_in(said) or W.sides_in(said) or W.says_middle(said):
+            raise Refusal("undetermined", f"{quoted} mixes the previous stud with a position: which stud should "
+                                          "the position be counted from?")
         last = ctx.require_last(quoted)
         stud = ctx.site.stud(last["stud_id"])
         return stud, f"the previous stud {stud.stud_id}"
+    counts, sides = W.counts_in(said), W.sides_in(said)
+    if (counts not in ([], [1]) or len(sides) > 1 or W.says_middle(said)
+            or (W.says_last(said) and (counts or sides == {"left"}))):
+        raise Refusal("undetermined", f"{quoted} is not a stud to count from: name it by its id, as the leftmost "
+                                      "or rightmost stud, or as the previous one.")
+    if sides:
+        side = next(iter(sides))
+        return ctx.site.studs[0 if side == "left" else -1], f"the {side}most stud"
+    if counts == [1]:
+        return ctx.site.studs[0], "the first (leftmost) stud"
+    if W.says_last(said) and W.says_end(said):
+        return ctx.site.studs[-1], "the last (rightmost) stud"
     raise Refusal("undetermined", f"{quoted} does not say which stud the position is counted from.")
 
 
 def stud_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
-    """Rule 3 (Fig. 12): the stud ``count`` places left or right of an anchor stud ("same" is 0 places)."""
+    """Rule 3 (Fig. 12): the stud ``count`` places left or right of an anchor stud ("zero", "0", "same": 0 places)."""
     if not (ti.has("St_loc1") and ti.has("St_loc2")):
         return None
+    ti.require_count_tagged("St_loc1", "stud")
     direction_words = ti.words_with("St_loc1")
     quoted = W.quote(direction_words)
+    count = W.one_count(direction_words, quoted, "stud")
     if W.says_same(direction_words):
+        if count not in (None, 0):
+            raise Refusal("undetermined", f"{quoted} says both the same stud and {W.places(count)} away: which stud?")
         anchor, anchor_text = _anchor(ti, ctx)
         return Decision(anchor.stud_id, f"{quoted} as {anchor_text} -> stud {anchor.stud_id}")
     direction = W.direction_of(direction_words, quoted, "stud")
-    count = W.count_in(direction_words) or 1
+    count = 1 if count is None else count
     anchor, anchor_text = _anchor(ti, ctx)
     where = f"{W.places(count)} to the {direction} of {anchor_text}"
     stud = _stud_at(ctx, anchor.index + (count if direction == "right" else -count), where)

@@ -6,12 +6,17 @@ Five rules, tried in order; the first that applies decides:
 2. ``width`` / ``length`` numbers (feet): the stack whose size matches; "A by B" is
    width A, length B; tried turned when nothing matches as said; a single number
    that fits two sizes is ambiguous.
-3. ``dim``: a size word ("full-size", "standard") is the standard 4 x 8; a
-   back-reference ("same as the previous one") is the size of the last installed panel.
+3. ``dim``: a size word ("full-size", "standard", "regular size") is the standard 4 x 8; a
+   back-reference ("same as the previous one") is the size of the last installed panel. A
+   lone "size" or "sized" names no size: the rule does not apply.
 4. ``Dw_loc1`` alone: a stack named by its position (left/middle/right, first/second/third,
-   "first from the right").
+   "first from the right"). What the rule cannot place with certainty is refused as
+   ``undetermined``, never read by dropping a word: an ordinal with a side but no "from"
+   ("the second panel from the right" with "from" untagged), a step with no anchor tagged
+   ("two to the right"), a count with the middle or with "last" (``words.line_position``).
 5. ``Dw_loc1`` + ``Dw_loc2``: a stack counted from an anchor (a panel id, or the
-   previous panel's stack) in a direction.
+   previous panel's stack) in a direction; "zero", "0" and "same" are 0 places (the
+   anchor's own stack); two counts are ``undetermined``.
 
 Rules 2 to 5 name a stack; the panel is the one on top of it now. Each rule is a
 small pure function of the tagged words and the context that returns a
@@ -118,7 +123,10 @@ def target_by_size(ti: TaggedInstruction, ctx: MappingContext) -> Decision | Non
 
 # --- rule 3 ---------------------------------------------------------------------------
 def target_by_dim(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
-    """Rule 3 (Fig. 10): "full-size"/"standard" is the 4 x 8; "same as last time" is the last panel's size."""
+    """Rule 3 (Fig. 10): "full-size"/"standard" is the 4 x 8; "same as last time" is the last panel's size.
+
+    A lone "size" or "sized" says a size is meant but not which: the rule does not apply.
+    """
     said = ti.words_with("dim")
     if not said:
         return None
@@ -148,26 +156,14 @@ def target_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision |
     """Rule 4 (Fig. 11): ``Dw_loc1`` alone names a stack by where it is."""
     if not ti.has("Dw_loc1") or ti.has("Dw_loc2"):
         return None
-    said = ti.words_with("Dw_loc1")
-    quoted = W.quote(ti.phrase("Dw_loc1"))
-    sides = W.sides_in(said)
-    nth = next((n for n in map(W.ordinal_of, said) if n is not None), None)
-    if len(sides) > 1:
-        raise Refusal("undetermined", f"{quoted} names both the left and the right: which stack?")
-    side = next(iter(sides), None)
-    if W.says_middle(said):
-        stack = "middle"
-    elif nth is not None and side is not None and W.says_from(said):
-        stack = _stack_at(ctx, nth - 1 if side == "left" else len(STACK_NAMES) - nth, quoted)
-    elif side is not None:
-        stack = side
-    elif nth is not None:
-        stack = _stack_at(ctx, nth - 1, quoted)  # a bare ordinal counts from the left
-    elif W.says_last(said):
-        stack = STACK_NAMES[-1]
-    else:
+    ti.require_count_tagged("Dw_loc1", "stack")
+    position = W.line_position(ti.words_with("Dw_loc1"), W.quote(ti.span("Dw_loc1")), len(STACK_NAMES), "stack")
+    if position is None:
         return None
-    return top_of(ctx, stack, f"{quoted}: the {stack} stack")
+    index, how = position
+    quoted = W.quote(ti.phrase("Dw_loc1"))
+    stack = _stack_at(ctx, index, quoted)
+    return top_of(ctx, stack, f"{quoted}: {how}, the {stack} stack")
 
 
 # --- rule 5 ---------------------------------------------------------------------------
@@ -175,11 +171,18 @@ def target_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> D
     """Rule 5 (Fig. 11): the stack ``count`` places left or right of an anchor panel's stack."""
     if not (ti.has("Dw_loc1") and ti.has("Dw_loc2")):
         return None
+    ti.require_count_tagged("Dw_loc1", "stack")
     direction_words = ti.words_with("Dw_loc1")
     anchor_words = ti.words_with("Dw_loc2")
     quoted = W.quote(direction_words)
-    direction = W.direction_of(direction_words, quoted, "stack")
-    count = W.count_in(direction_words) or 1
+    count = W.one_count(direction_words, quoted, "stack")
+    if W.says_same(direction_words):
+        if count not in (None, 0):
+            raise Refusal("undetermined", f"{quoted} says both the same stack and {W.places(count)} away: which stack?")
+        direction, count = "right", 0
+    else:
+        direction = W.direction_of(direction_words, quoted, "stack")
+        count = 1 if count is None else count
     ids = W.ids_in(anchor_words)
     if len(ids) > 1:
         raise Refusal("undetermined", f"Two anchor panels are named, {' and '.join(ids)}: which one?")
@@ -193,7 +196,8 @@ def target_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> D
     else:
         raise Refusal("undetermined", f"{W.quote(anchor_words)} does not say which panel the position is counted from.")
     index = STACK_NAMES.index(anchor.stack) + (count if direction == "right" else -count)
-    where = f"{W.places(count)} to the {direction} of the {anchor.stack} stack ({anchor_text})"
+    where = (f"{W.places(count)} to the {direction} of the {anchor.stack} stack ({anchor_text})" if count
+             else f"the same stack as {anchor_text}, the {anchor.stack} stack")
     stack = _stack_at(ctx, index, where)
     return top_of(ctx, stack, f"{where}: the {stack} stack")
 
@@ -214,6 +218,9 @@ def resolve_target(ti: TaggedInstruction, ctx: MappingContext, trace: Trace | No
     if ti.has("Dw_loc2"):
         message = (f"{W.quote(ti.words_with('Dw_loc2'))} says which panel to count from, but not in which "
                    "direction: which panel should I pick?")
+    elif W.size_words(ti.words_with("dim")):
+        message = (f"{W.quote(ti.phrase('dim'))} does not say which size: give the size (\"the 4 by 8\", "
+                   "\"the full-size panel\"), the panel's id, or where its stack is.")
     else:
         message = ("The instruction does not say which panel to pick: give its id, its size "
                    "(\"the 4 by 8\"), or where its stack is (\"the panel on the left\").")

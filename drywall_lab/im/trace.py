@@ -8,6 +8,7 @@ import pandas as pd
 
 from drywall_lab.corpus.tags import COREF_TAGS
 from drywall_lab.errors import Refusal
+from drywall_lab.im import words as W
 
 
 _LEAD_IN = frozenset({"the", "a", "an", "is", "of", "that", "with", "width", "length", "size", "stud", "panel",
@@ -45,6 +46,22 @@ class TaggedInstruction:
 
     def has(self, *tags: str) -> bool:
         return any(t in tags for t in self.tags)
+
+    def span(self, *tags: str) -> list[str]:
+        """The words from the first to the last word carrying any of ``tags``: ``"third stud left"``."""
+        idx = self.indices(*tags)
+        return list(self.words[idx[0]:idx[-1] + 1]) if idx else []
+
+    def require_count_tagged(self, tag: str, what: str) -> None:
+        """Refuse (``undetermined``) a position whose count was left untagged ("zero studs to/St_loc1 ...")."""
+        i = W.untagged_count_before(self.words, self.tags, tag)
+        if i is not None:
+            end = self.indices(tag)[0]
+            while end + 1 < len(self.tags) and self.tags[end + 1] == tag:
+                end += 1
+            quoted = W.quote(self.words[i:end + 1])
+            raise Refusal("undetermined", f"In {quoted} I could not tell whether '{self.words[i]}' is the count: "
+                                          f"which {what}?")
 
     def phrase(self, *tags: str) -> list[str]:
         """The tagged words with the few words around them that make them readable, to quote back.

@@ -3,8 +3,13 @@
 The rules in ``target.py`` and ``stud.py`` never look at raw strings; they ask these
 small pure functions what a word means. A word reaches them as typed or as a
 speech recogniser wrote it: any case, edge punctuation, digits or number words
-("4", "four"), ordinals ("second", "2nd"), sizes in one word ("4x8",
+("4", "four", "zero"), ordinals ("second", "2nd"), sizes in one word ("4x8",
 "four-by-eight", "8'"), "centre" or "center".
+
+A count is read as said: "zero", "0" and "same" are 0 places (spec section 3), never
+the default of one. ``line_position`` reads an absolute position on a row of studs or
+stacks (rules S2 and T4) and refuses, as ``undetermined``, every count or ordinal it
+cannot place with certainty instead of dropping it.
 """
 from __future__ import annotations
 
@@ -14,10 +19,15 @@ from typing import Iterable, Sequence
 from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_WORDS
 from drywall_lab.errors import Refusal
 
-#: Number words a worker may say, beyond the phrase banks' (which stop at twelve).
-_NUMBER_WORDS: dict[str, int] = {word: n for n, word in NUMBER_WORDS.items()} | {"eleven": 11}
+#: Number words a worker may say, beyond the phrase banks' (which stop at twelve): a count past the
+#: wall's end must be read, so that it is refused as ``off_the_end`` instead of dropped.
+_NUMBER_WORDS: dict[str, int] = {word: n for n, word in NUMBER_WORDS.items()} | {
+    "eleven": 11, "thirteen": 13, "fourteen": 14, "fifteen": 15, "sixteen": 16, "seventeen": 17,
+    "eighteen": 18, "nineteen": 19, "twenty": 20,
+}
 _ORDINAL_WORDS: dict[str, int] = {word: n for n, word in ORDINAL_WORDS.items()} | {
-    "eighth": 8, "ninth": 9, "tenth": 10, "eleventh": 11, "twelfth": 12, "thirteenth": 13,
+    "eighth": 8, "ninth": 9, "tenth": 10, "eleventh": 11, "twelfth": 12, "thirteenth": 13, "fourteenth": 14,
+    "fifteenth": 15, "sixteenth": 16, "seventeenth": 17, "eighteenth": 18, "nineteenth": 19, "twentieth": 20,
 }
 _ORDINAL_DIGITS = re.compile(r"^(\d+)(?:st|nd|rd|th)$")
 _PIECES = re.compile(r"\d+|[a-z]+")
@@ -32,9 +42,20 @@ BACK_REFERENCE_WORDS = frozenset({
     "installed", "hung", "used", "placed", "match", "matching", "matches", "like",
 })
 #: Size words that name the standard 4 x 8 panel (spec section 3, target rule 3).
-STANDARD_SIZE_WORDS = frozenset({"full-size", "full-sized", "fullsize", "full", "standard", "regular", "size", "normal", "sized"})
+STANDARD_SIZE_WORDS = frozenset({"full-size", "full-sized", "fullsize", "full", "standard", "regular", "normal"})
+#: Words that say a size is meant but not which: "standard size", "same size as before" get their size from the
+#: other word; a lone "size" or "sized" names no panel.
+SIZE_WORDS = frozenset({"size", "sized", "sizes"})
 #: Words that make "first"/"last" mean the end of the wall, not the last action ("the very last stud").
 END_WORDS = frozenset({"very", "far", "most", "furthest", "farthest", "end"})
+#: Generic words that may stand between a count and its direction ("two studs to the right", "one panel over").
+COUNTED_NOUNS = frozenset({"stud", "studs", "panel", "panels", "stack", "stacks", "sheet", "sheets", "board",
+                           "boards", "place", "places", "over", "spot", "spots"})
+#: Tags that carry no information for the rules (spec section 2; ``Trg``/``Dst`` are read as ``O``).
+UNTAGGED = frozenset({"O", "Trg", "Dst"})
+#: Words of a step from another stud or stack ("one over to the right", "just to the left", "two places"):
+#: without a tagged anchor there is nothing to count from.
+RELATIVE_WORDS = frozenset({"over", "place", "places", "next", "just", "beside", "same"})
 
 
 def normalise(word: str) -> str:
@@ -70,19 +91,60 @@ def ordinal_of(word: str) -> int | None:
     return int(m.group(1)) if m else None
 
 
-def count_in(words: Iterable[str]) -> int | None:
-    """The count of a relative position: an ordinal or a number ("second", "two", "2nd"); None if none is said.
-
-    "one to the right", "second to the left", "two places to the right" give 1, 2, 2.
-    """
+def _counts(words: Sequence[str]) -> list[tuple[int, bool]]:
+    """(count, is an ordinal) for every count said, in order; "one" after an ordinal is the generic noun."""
+    out: list[tuple[int, bool]] = []
+    after_ordinal = False
     for word in words:
         n = ordinal_of(word)
-        if n is None:
-            numbers = numbers_in(word)
-            n = numbers[0] if numbers else None
         if n is not None:
-            return n
-    return None
+            out.append((n, True))
+        elif not (after_ordinal and normalise(word) == "one"):
+            out.extend((number, False) for number in numbers_in(word))
+        after_ordinal = n is not None
+    return out
+
+
+def counts_in(words: Sequence[str]) -> list[int]:
+    """Every count said, in order: ordinals and numbers ("second", "two", "2nd", "zero", "0").
+
+    "one" right after an ordinal is the generic noun ("the 2nd one to the left"), not a count.
+    """
+    return [n for n, _ in _counts(words)]
+
+
+def untagged_count_before(words: Sequence[str], tags: Sequence[str], tag: str) -> int | None:
+    """The index of a count left untagged right before the first ``tag`` word; None if there is none.
+
+    "zero studs to/St_loc1 the/St_loc1 right/St_loc1": the position's own count ("zero") was not tagged,
+    so reading the tagged words alone would drop it. Only a position with no count of its own and a
+    direction ("left", "right") or a step word ("over", "places") can be missing one; generic nouns
+    between are skipped; "one" is not a count here ("the one to the right"), nor is an id.
+    """
+    first = next((i for i, t in enumerate(tags) if t == tag), None)
+    if first is None:
+        return None
+    said = [w for w, t in zip(words, tags) if t == tag]
+    if counts_in(said) or not (says_relative(said) or any(normalise(w) in ("left", "right") for w in said)):
+        return None
+    i = first - 1
+    while i >= 0 and tags[i] in UNTAGGED and normalise(words[i]) in COUNTED_NOUNS:
+        i -= 1
+    if i < 0 or tags[i] not in UNTAGGED or normalise(words[i]) == "one" or ids_in([words[i]]):
+        return None
+    return i if ordinal_of(words[i]) is not None or len(numbers_in(words[i])) == 1 else None
+
+
+def one_count(words: Sequence[str], quoted: str, what: str) -> int | None:
+    """The count of a relative position, None if none is said; ``undetermined`` when it gives two.
+
+    "one to the right", "second to the left", "two places to the right", "zero to the left" give 1, 2, 2, 0;
+    "second three to the right" is refused.
+    """
+    counts = counts_in(words)
+    if len(counts) > 1:
+        raise Refusal("undetermined", f"{quoted} gives two counts, {counts[0]} and {counts[1]}: which {what}?")
+    return counts[0] if counts else None
 
 
 def sides_in(words: Iterable[str]) -> set[str]:
@@ -124,6 +186,11 @@ def says_same(words: Iterable[str]) -> bool:
     return any(normalise(w) == "same" for w in words)
 
 
+def says_relative(words: Iterable[str]) -> bool:
+    """ "over", "places", "just", "next", "same": words of a step from another stud or stack."""
+    return any(normalise(w) in RELATIVE_WORDS for w in words)
+
+
 def says_last(words: Iterable[str]) -> bool:
     return any(normalise(w) in ("last", "final") for w in words)
 
@@ -133,7 +200,13 @@ def back_reference_words(words: Iterable[str]) -> list[str]:
 
 
 def standard_size_words(words: Iterable[str]) -> list[str]:
+    """The words that name the standard size ("full-size", "standard"); a lone "size" is not one."""
     return [w for w in words if normalise(w) in STANDARD_SIZE_WORDS]
+
+
+def size_words(words: Iterable[str]) -> list[str]:
+    """The generic size words ("size", "sized"): a size is meant, but they do not say which."""
+    return [w for w in words if normalise(w) in SIZE_WORDS]
 
 
 def ids_in(words: Iterable[str]) -> list[str]:
@@ -155,3 +228,73 @@ def places(count: int) -> str:
 def quote(words: Sequence[str]) -> str:
     """Words as a worker would read them back: ``'the length is 8'``."""
     return "'" + " ".join(words) + "'"
+
+
+def line_position(said: Sequence[str], quoted: str, length: int, what: str) -> tuple[int, str] | None:
+    """Where an absolute position puts a stud or stack on a row of ``length`` (0 = the left end), and how.
+
+    The readings the spec and the annotation guidelines decide (rules S2 and T4 of spec section 3):
+    "n-th from the left/right" (or "counting from") is counted from that end; the middle is
+    ``length // 2``; left/leftmost/far left and right/rightmost/far right are the ends; "last" is the
+    right end; a bare ordinal counts from the left. ``None`` when the words name no position. The index
+    may lie off the row: the caller refuses it as ``off_the_end``.
+
+    Everything else is refused as ``undetermined``, never read by dropping a word: both sides; a step
+    from another stud or stack with no anchor tagged ("two to the right", "just to the left", "same");
+    an id among the position words; an ordinal with a side but no "from" ("third ... left": from the
+    left end, or to the left of another stud?); an ordinal with "from" but no side, with the middle or
+    with "last" ("second last"); the middle with a side or with "last"; "last" with "left"; two counts.
+    """
+    sides = sides_in(said)
+    if len(sides) > 1:
+        raise Refusal("undetermined", f"{quoted} names both the left and the right: which {what}?")
+    side = next(iter(sides), None)
+    counts = _counts(said)
+    ordinals = list(dict.fromkeys(n for n, is_ordinal in counts if is_ordinal))
+    numbers = [n for n, is_ordinal in counts if not is_ordinal]
+    middle, last, from_ = says_middle(said), says_last(said), says_from(said)
+    if ids_in(said):
+        raise Refusal("undetermined", f"{quoted} mixes an id with a position: which {what}?")
+    if len(ordinals) > 1 or (ordinals and numbers):
+        second = ordinals[1] if len(ordinals) > 1 else numbers[0]
+        raise Refusal("undetermined", f"{quoted} gives two counts, {ordinals[0]} and {second}: which {what}?")
+    nth = ordinals[0] if ordinals else None
+    if numbers and side is not None and from_:
+        raise Refusal("undetermined", f"{quoted} does not say whether it is the {_ordinal_text(numbers[0])} {what} "
+                                      f"from the {side} end or {places(numbers[0])} from it: which {what}?")
+    if numbers or says_relative(said):
+        raise Refusal("undetermined", f"{quoted} counts from another {what} but does not say which one: which {what}?")
+    if nth is not None:
+        if middle:
+            raise Refusal("undetermined", f"{quoted} gives a count and the middle: which {what}?")
+        if last and side is None:
+            raise Refusal("undetermined", f"{quoted} does not say whether to count from the left end or back from "
+                                          f"the right end: which {what}?")
+        if last:
+            raise Refusal("undetermined", f"{quoted} gives a count and 'last': which {what}?")
+        if side is not None and from_:
+            return (nth - 1 if side == "left" else length - nth), f"{_ordinal_text(nth)} counted from the {side}"
+        if side is not None:
+            raise Refusal("undetermined", f"{quoted} does not say whether to count from the {side} end or to the "
+                                          f"{side} of another {what}: which {what}?")
+        if from_:
+            raise Refusal("undetermined", f"{quoted} does not say which end to count from: which {what}?")
+        return nth - 1, f"{_ordinal_text(nth)} counted from the left"
+    if middle and (side is not None or last):
+        other = f"the {side}" if side is not None else "'last'"
+        raise Refusal("undetermined", f"{quoted} names both the middle and {other}: which {what}?")
+    if middle:
+        return length // 2, "the middle"
+    if last and side == "left":
+        raise Refusal("undetermined", f"{quoted} names both 'last' and the left: which {what}?")
+    if side is not None:
+        return (0 if side == "left" else length - 1), f"the {side} end"
+    if last:
+        return length - 1, "the last (right end)"
+    return None
+
+
+def _ordinal_text(n: int) -> str:
+    """ "1st", "2nd", "3rd", "11th"."""
+    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
+    return f"{n}{suffix}"

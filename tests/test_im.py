@@ -698,3 +698,46 @@ def test_relative_stacks_count_from_the_anchor(count, direction, anchor, data):
             resolve_target(tagged(markup), context())
         assert info.value.reason == "off_the_end"
         assert info.value.message.startswith("There is no stack ")
+
+
+# --- field language (annotation guidelines 4.7) ----------------------------------------------------------
+def _after_one(markup: str) -> dict:
+    """The outcome of ``markup`` after 500321 (2 x 8) went on stud 500104 in the bottom row."""
+    im = InformationMapper()
+    assert im.apply(*_wt("panel 500321/ID_wall on stud 500104/ID_stud bottom/Hr_btm row/Hr_btm")).accepted
+    return im.interpret(*_wt(markup)).outcome()
+
+
+@pytest.mark.parametrize("markup, stud", [
+    ("the 2/width by 8/length sheet on the same/St_loc1 stud up top/Hr_top", "500104"),
+    ("the 2/width by 8/length sheet where/St_loc1 the last/St_loc2 one went top/Hr_top", "500104"),
+    ("the 2/width by 8/length sheet same/St_loc1 stud as b4/St_loc2 top/Hr_top", "500104"),
+    ("the 2/width by 8/length sheet on the 7th/St_loc1 stud frm/St_loc1 the/St_loc1 right/St_loc1 top/Hr_top", "500106"),
+    ("the 2/width by 8/length sheet on stud five/ID_stud oh/ID_stud oh/ID_stud one/ID_stud oh/ID_stud two/ID_stud "
+     "top/Hr_top", "500102"),
+    ("the 2/width by 8/length sheet on 5/ID_stud 0/ID_stud 0/ID_stud 1/ID_stud 0/ID_stud 5/ID_stud top/Hr_top", "500105"),
+])
+def test_field_stud_readings(markup, stud):
+    assert _after_one(markup)["stud_id"] == stud
+
+
+def test_same_stud_alone_needs_a_previous_command():
+    r = interpret(*_wt("the full/dim sheet on the same/St_loc1 stud"))
+    assert r.refusal.reason == "no_history"
+
+
+@pytest.mark.parametrize("markup, panel", [
+    ("another/dim of those/dim", "500311"),
+    ("ditto/dim", "500311"),
+    ("one more of those/dim", "500311"),
+    ("a whole/dim sheet", "500320"),
+    ("a standard-size/dim board", "500320"),
+    ("the 4x8/width", "500320"),
+    ("a six-footer/length", "500322"),
+])
+def test_field_target_readings(markup, panel):
+    assert _after_one(markup + " on stud 500100/ID_stud up top/Hr_top")["drywall_id"] == panel
+
+
+def test_an_eight_footer_is_ambiguous():
+    assert _after_one("an eight-footer/length on stud 500100/ID_stud up top/Hr_top")["refusal"] == "ambiguous_size"

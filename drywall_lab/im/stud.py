@@ -5,7 +5,8 @@ Three rules, tried in order:
 1. ``ID_stud``: that stud.
 2. ``St_loc1`` alone: a stud named by where it is on the wall: leftmost/first,
    rightmost/last, middle/centre, "n-th from the left/right", or a bare ordinal
-   ("the third stud", counted from the left). What the rule cannot place with
+   ("the third stud", counted from the left); "the same stud" (or "where the last one
+   went") alone is the stud of the last accepted command. What the rule cannot place with
    certainty is refused as ``undetermined``, never read by dropping a word: an
    ordinal with a side but no "from" ("the third stud left": from the left end, or
    to the left of another stud?), a step with no anchor tagged ("three to the
@@ -58,7 +59,12 @@ def stud_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | N
     if not ti.has("St_loc1") or ti.has("St_loc2"):
         return None
     ti.require_count_tagged("St_loc1", "stud")
-    position = W.line_position(ti.words_with("St_loc1"), W.quote(ti.span("St_loc1")), len(ctx.site.studs), "stud")
+    said = ti.words_with("St_loc1")
+    if W.says_same(said) and not (W.counts_in(said) or W.sides_in(said) or W.says_middle(said)):
+        quoted = W.quote(ti.phrase("St_loc1"))  # "the same stud", "where the last one went": the previous stud
+        stud = ctx.site.stud(ctx.require_last(quoted)["stud_id"])
+        return Decision(stud.stud_id, f"{quoted}: the stud of the last accepted command -> stud {stud.stud_id}")
+    position = W.line_position(said, W.quote(ti.span("St_loc1")), len(ctx.site.studs), "stud")
     if position is None:
         return None
     index, how = position

@@ -39,10 +39,11 @@ MIDDLE_WORDS = frozenset({"middle", "center", "centre", "central", "halfway", "m
 #: Words that point back at the last accepted command ("previous", "the one you just hung").
 BACK_REFERENCE_WORDS = frozenset({
     "same", "previous", "previously", "last", "just", "before", "earlier", "again", "time",
-    "installed", "hung", "used", "placed", "match", "matching", "matches", "like",
+    "installed", "hung", "used", "placed", "match", "matching", "matches", "like", "another", "those", "ditto",
 })
 #: Size words that name the standard 4 x 8 panel (spec section 3, target rule 3).
-STANDARD_SIZE_WORDS = frozenset({"full-size", "full-sized", "fullsize", "full", "standard", "regular", "normal"})
+STANDARD_SIZE_WORDS = frozenset({"full-size", "full-sized", "fullsize", "full", "standard", "regular", "normal",
+                                 "whole", "standard-size"})
 #: Words that say a size is meant but not which: "standard size", "same size as before" get their size from the
 #: other word; a lone "size" or "sized" names no panel.
 SIZE_WORDS = frozenset({"size", "sized", "sizes"})
@@ -55,12 +56,24 @@ COUNTED_NOUNS = frozenset({"stud", "studs", "panel", "panels", "stack", "stacks"
 UNTAGGED = frozenset({"O", "Trg", "Dst"})
 #: Words of a step from another stud or stack ("one over to the right", "just to the left", "two places"):
 #: without a tagged anchor there is nothing to count from.
-RELATIVE_WORDS = frozenset({"over", "place", "places", "next", "just", "beside", "same"})
+RELATIVE_WORDS = frozenset({"over", "place", "places", "next", "just", "beside", "same", "where"})
+#: Words of a stud position that mean "0 places from the anchor": "the same stud as last time", "where the
+#: last one went" (annotation guidelines 3, St_loc1, and 4.7).
+SAME_WORDS = frozenset({"same", "where"})
+#: Short written forms (phone messages, notes) read as the word they stand for.
+SPELLINGS: dict[str, str] = {
+    "frm": "from", "fr": "from", "b4": "before", "prev": "previous", "lft": "left", "rt": "right", "rgt": "right",
+    "ctr": "centre", "cntr": "center", "mid": "middle", "nxt": "next", "thru": "through",
+}
+#: Single digits as they are read out one by one ("five oh oh one oh three"): a spoken id.
+_DIGIT_WORDS: dict[str, str] = {"zero": "0", "oh": "0", "o": "0", "one": "1", "two": "2", "three": "3",
+                                "four": "4", "five": "5", "six": "6", "seven": "7", "eight": "8", "nine": "9"}
 
 
 def normalise(word: str) -> str:
-    """Lower case, edge punctuation dropped: ``"Centre,"`` -> ``"centre"``."""
-    return _EDGE.sub("", word.strip().lower())
+    """Lower case, edge punctuation dropped, short forms spelt out: ``"Centre,"`` -> ``"centre"``, ``"frm"`` -> ``"from"``."""
+    w = _EDGE.sub("", word.strip().lower())
+    return SPELLINGS.get(w, w)
 
 
 def numbers_in(word: str) -> list[int]:
@@ -183,7 +196,8 @@ def says_end(words: Iterable[str]) -> bool:
 
 
 def says_same(words: Iterable[str]) -> bool:
-    return any(normalise(w) == "same" for w in words)
+    """ "same", "where" (the last one went): 0 places from the anchor."""
+    return any(normalise(w) in SAME_WORDS for w in words)
 
 
 def says_relative(words: Iterable[str]) -> bool:
@@ -210,12 +224,30 @@ def size_words(words: Iterable[str]) -> list[str]:
 
 
 def ids_in(words: Iterable[str]) -> list[str]:
-    """The ids said, in order, without repeats: words that are whole numbers of four or more digits."""
+    """The ids said, in order, without repeats: whole numbers of four or more digits.
+
+    An id is one word ("500107", "#500107") or read out digit by digit over several words
+    ("five oh oh one oh seven", "5 0 0 1 0 7"): a run of single digits makes one id.
+    """
     out: list[str] = []
+    run = ""
+
+    def finish() -> None:
+        nonlocal run
+        if len(run) >= 4 and run not in out:
+            out.append(run)
+        run = ""
+
     for word in words:
         w = normalise(word).lstrip("#")
+        digit = w if (len(w) == 1 and w.isdigit()) else _DIGIT_WORDS.get(w)
+        if digit is not None:
+            run += digit
+            continue
+        finish()
         if len(w) >= 4 and w.isdigit() and w not in out:
             out.append(w)
+    finish()
     return out
 
 

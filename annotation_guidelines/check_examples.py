@@ -3,7 +3,7 @@
     python annotation_guidelines/check_examples.py [--corpus-dir DIR]
 
 Every code span of README.md that holds a ``word/TAG`` is an example. It must occur in
-data/corpus (any split) as consecutive words with exactly those tags, a word without ``/TAG``
+data/corpus (any split) or in the committed splits of the field corpus (data/field_corpus) as consecutive words with exactly those tags, a word without ``/TAG``
 being ``O``; ``...`` in a span skips words. Examples in section 5 are checked against the
 co-reference tags. A six-digit id matches any id of the same kind (5001xx or 5003xx) unless it
 is one that does not exist on the site (an unknown id must match itself). Examples marked wrong
@@ -18,6 +18,7 @@ import sys
 from pathlib import Path
 
 from drywall_lab.corpus import COREF_TAGS, read_corpus
+from drywall_lab.corpus.field_generator import COMMITTED_SPLITS, field_split
 from drywall_lab.site import default_site
 
 README = Path(__file__).resolve().parent / "README.md"
@@ -77,6 +78,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--corpus-dir", default=None)
     args = parser.parse_args(argv)
     rows = [r for split in read_corpus(args.corpus_dir).values() for r in split]
+    rows += [r for split in COMMITTED_SPLITS for r in field_split(split)]
     missing = checked = 0
     for line_no, span, coref, phrase_bank in examples(README.read_text(encoding="utf-8")):
         checked += 1

@@ -2,17 +2,31 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import os
+import shutil
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from drywall_lab.im import ActionHistory
 
 
 def _cmd_corpus(args: argparse.Namespace) -> int:
     from drywall_lab import corpus
 
     if args.action == "generate":
-        paths = corpus.write_corpus(args.out, seed=args.seed)
+        from drywall_lab.corpus.io import read_jsonl
+
+        if args.field:
+            from drywall_lab.corpus.field_generator import FIELD_DIR, FIELD_SEED, write_field_corpus
+
+            paths = write_field_corpus(args.out or FIELD_DIR, seed=FIELD_SEED if args.seed is None else args.seed)
+        else:
+            paths = corpus.write_corpus(args.out or args.default_out, seed=corpus.SEED if args.seed is None else args.seed)
         for split, path in paths.items():
-            print(f"{split:<11} {sum(1 for _ in open(path)):>5} instructions -> {path}")
+            print(f"{split:<11} {len(read_jsonl(path)):>5} instructions -> {path}")
         return 0
     rows = corpus.read_corpus(args.corpus_dir)
     if args.action == "stats":
@@ -104,12 +118,20 @@ def _tagged_words(args: argparse.Namespace) -> tuple[list[str], list[str]]:
 
 
 def _cmd_interpret(args: argparse.Namespace) -> int:
-    """One instruction through NLU and IM: words and tags, the rule trace, the command or refusal."""
-    from drywall_lab.im import ActionHistory, interpret
+    """One instruction through NLU and IM: words and tags, the rule trace, the command or refusal.
 
-    history = ActionHistory()
-    if args.history and Path(args.history).exists():
-        history = ActionHistory.from_csv(args.history)
+    With ``--history FILE`` the IM starts from that action history (spec section 4); the file must
+    exist unless ``--record`` is given, when a missing file starts a new wall. ``--record`` writes
+    an accepted command into the file, whole or not at all.
+    """
+    from drywall_lab.im import interpret
+
+    _check_text(args.text)
+    history_path = Path(args.history) if args.history else None
+    if args.record and history_path is None:
+        raise ValueError("--record needs --history FILE: the action history CSV to record the command in")
+    history = _read_history(history_path, start_new=args.record)
+    new_file = history_path is not None and not history_path.exists()
     words, tags = _tagged_words(args)
     result = interpret(words, tags, history)
     print("words and tags:")
@@ -120,17 +142,60 @@ def _cmd_interpret(args: argparse.Namespace) -> int:
     if result.command is None:
         print(f"refused ({result.refusal.reason}): {result.refusal.message}")
         print("the action history is unchanged")
+        if args.record and new_file:
+            _save_history(history, history_path)
+            print(f"started a new action history with no rows: {history_path}")
         return 1
     print(f"command: {result.command}")
     print("new action history row:")
     import pandas as pd
 
     print(pd.DataFrame([result.history_row]).to_string(index=False))
-    if args.history and args.record:
+    if args.record:
         history.record(result.command)
-        history.to_csv(args.history)
-        print(f"recorded: {args.history} now has {len(history)} row(s)")
+        _save_history(history, history_path)
+        print(f"recorded: {history_path} now has {len(history)} row(s)")
     return 0
+
+
+def _check_text(text: str) -> None:
+    """A ``ValueError`` for an instruction holding bytes that are not UTF-8 (they reach ``argv`` as surrogates)."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError as e:
+        raise ValueError(f"the instruction is not valid UTF-8 text (at character {e.start + 1})") from None
+
+
+def _read_history(path: Path | None, start_new: bool) -> ActionHistory:
+    """The action history ``--history`` names: empty without one; a missing file is an error unless
+    ``start_new`` (``--record``), so that a mistyped path never silently starts from an empty wall."""
+    from drywall_lab.im import ActionHistory
+
+    if path is None:
+        return ActionHistory()
+    if path.is_dir():
+        raise ValueError(f"--history {path} is a folder, not an action history CSV file")
+    if not path.exists():
+        if start_new:
+            folder = next(p for p in path.absolute().parents if p.exists())
+            if not folder.is_dir():
+                raise ValueError(f"--history {path} cannot be created: {folder} is a file, not a folder")
+            return ActionHistory()
+        raise FileNotFoundError(f"no action history at {path} (to start a new wall in that file, add --record)")
+    return ActionHistory.from_csv(path)
+
+
+def _save_history(history: ActionHistory, path: Path) -> None:
+    """Write the history CSV whole or not at all: a temporary file beside it, then ``os.replace``."""
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        history.to_csv(temporary)
+        if path.exists():
+            shutil.copymode(path, temporary)
+        os.replace(temporary, path)
+    finally:
+        with contextlib.suppress(OSError):
+            temporary.unlink(missing_ok=True)
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
@@ -141,8 +206,10 @@ def _cmd_run(args: argparse.Namespace) -> int:
 
     episodes = read_episodes(args.episodes)
     tagger = load_tagger_option(args.tagger)
+    # JSON's \u escapes where the output cannot take the characters themselves
+    ascii_only = (getattr(sys.stdout, "encoding", None) or "").lower().replace("-", "").replace("_", "") != "utf8"
     for record in run_episodes(episodes, tagger):
-        sys.stdout.write(json.dumps(record, ensure_ascii=False) + "\n")
+        sys.stdout.write(json.dumps(record, ensure_ascii=ascii_only) + "\n")
     return 0
 
 
@@ -163,8 +230,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("corpus", help="generate the instruction corpus, print its statistics, export CoNLL")
     p.add_argument("action", choices=["generate", "stats", "conll"])
-    p.add_argument("--out", default=None, help="generate: output folder (default data/corpus); conll: file")
-    p.add_argument("--seed", type=int, default=SEED)
+    p.add_argument("--out", default=None,
+                   help="generate: output folder (default data/corpus, or data/field_corpus with --field); conll: file")
+    p.add_argument("--field", action="store_true",
+                   help="generate: the field corpus (registers of site language; train, validation, test, novel)")
+    p.add_argument("--seed", type=int, default=None, help="generate: the seed (default: the corpus's own)")
     p.add_argument("--split", default="test", choices=["train", "validation", "test", "novel"])
     p.add_argument("--corpus-dir", default=None, help="read the corpus from here (default data/corpus)")
     p.set_defaults(func=_cmd_corpus)
@@ -189,8 +259,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
     p.add_argument("--tagged", action="store_true",
                    help='TEXT is already tagged, word/TAG for tagged words: "the full-size/dim drywall on stud 500100/ID_stud"')
-    p.add_argument("--history", default=None, help="an action history CSV to start from (missing: empty history)")
-    p.add_argument("--record", action="store_true", help="append an accepted command to the --history CSV")
+    p.add_argument("--history", default=None,
+                   help="an action history CSV to start from; it must exist unless --record is given")
+    p.add_argument("--record", action="store_true",
+                   help="append an accepted command to the --history CSV (a missing file starts a new wall)")
     p.set_defaults(func=_cmd_interpret)
 
     p = sub.add_parser("run", help="episodes (JSON lines) through NLU and IM; one JSON line per instruction (spec section 6)")
@@ -204,15 +276,27 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _error_message(error: Exception) -> str:
+    """What ``main`` prints after ``error:``: the message, or for a failed file operation the path and why."""
+    if isinstance(error, OSError) and error.filename is not None:
+        paths = str(error.filename) + (f" -> {error.filename2}" if error.filename2 is not None else "")
+        return f"{paths}: {error.strerror or type(error).__name__}"
+    return str(error)
+
+
 def main(argv: list[str] | None = None) -> int:
+    """Run one command; bad input (a missing, unreadable or garbled file, a wrong option) exits 2 with a message."""
     parser = build_parser()
     args = parser.parse_args(argv)
-    if getattr(args, "command", None) == "corpus" and args.action == "generate" and args.out is None:
-        args.out = args.default_out
     try:
         return args.func(args)
-    except (ValueError, FileNotFoundError) as e:
-        print(f"error: {e}", file=sys.stderr)
+    except BrokenPipeError:  # the reader of the output went away (``run ... | head``)
+        with contextlib.suppress(OSError, ValueError):  # so that the final flush does not fail again
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        print("error: the output was closed before everything was written", file=sys.stderr)
+        return 2
+    except (ValueError, OSError) as e:
+        print(f"error: {_error_message(e)}", file=sys.stderr)
         return 2
 
 

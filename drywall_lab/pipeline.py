@@ -10,11 +10,10 @@ episodes with hand-checked tags and the commands they must give
 """
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Iterable, Iterator, Mapping, Protocol, Sequence
 
-from drywall_lab.corpus.io import tokenize
+from drywall_lab.corpus.io import read_jsonl, tokenize
 from drywall_lab.corpus.markup import parse
 from drywall_lab.im import ActionHistory, InformationMapper, Interpretation
 from drywall_lab.site import DATA_DIR, Site
@@ -37,9 +36,12 @@ def load_tagger_option(option: str | Path | None) -> WordTagger:
 
 # --- episodes ---------------------------------------------------------------------------------
 def parse_episode(obj: object, where: str = "episode") -> dict:
-    """Check one episode ``{"id": ..., "instructions": [...]}``; a ``ValueError`` saying what is wrong.
+    """Check one episode ``{"id": ..., "instructions": [...]}`` (spec section 6); a ``ValueError`` saying what
+    is wrong, starting with ``where``.
 
     The id may be a string or a number (it is written back as given); extra keys are kept.
+    An instruction must be Unicode text: a JSON escape of half a surrogate pair (``"\\ud800"``)
+    is not, and could not be written back as UTF-8.
     """
     if not isinstance(obj, dict):
         raise ValueError(f"{where}: an episode must be a JSON object with \"id\" and \"instructions\", "
@@ -49,28 +51,35 @@ def parse_episode(obj: object, where: str = "episode") -> dict:
         raise ValueError(f"{where}: the episode has no {' or '.join(repr(k) for k in missing)}")
     if not isinstance(obj["id"], (str, int)) or isinstance(obj["id"], bool):
         raise ValueError(f"{where}: the episode id must be a string or a number, not {obj['id']!r}")
+    if isinstance(obj["id"], str) and not _is_unicode_text(obj["id"]):
+        raise ValueError(f"{where}: the episode id is not Unicode text (it holds half a surrogate pair)")
     instructions = obj["instructions"]
     if not isinstance(instructions, list) or not all(isinstance(i, str) for i in instructions):
         raise ValueError(f"{where}: \"instructions\" must be a list of strings")
+    for number, text in enumerate(instructions, start=1):
+        if not _is_unicode_text(text):
+            raise ValueError(f"{where}: instruction {number} is not Unicode text (it holds half a surrogate pair)")
     return obj
 
 
+def _is_unicode_text(text: str) -> bool:
+    """False for a string holding a lone surrogate (JSON allows ``"\\ud800"``; UTF-8 cannot carry it)."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        return False
+    return True
+
+
 def read_episodes(path: Path | str) -> list[dict]:
-    """Episodes from a JSON-lines file, one per line; blank lines are skipped; errors name the line."""
+    """Episodes from a JSON-lines file (spec section 6), one per line, read by ``corpus.io.read_jsonl``:
+    UTF-8 with or without a byte-order mark, blank lines skipped, every error naming its line."""
     path = Path(path)
-    if not path.is_file():
+    if not path.exists():
         raise FileNotFoundError(f"no episodes file at {path}")
-    episodes = []
-    with path.open(encoding="utf-8") as f:
-        for number, line in enumerate(f, start=1):
-            if not line.strip():
-                continue
-            try:
-                obj = json.loads(line)
-            except json.JSONDecodeError as e:
-                raise ValueError(f"{path}, line {number}: not a JSON object ({e.msg})") from None
-            episodes.append(parse_episode(obj, f"{path}, line {number}"))
-    return episodes
+    if path.is_dir():
+        raise ValueError(f"{path} is a folder, not an episodes file")
+    return read_jsonl(path, parse_episode)
 
 
 def contract_record(episode_id: str | int, step: int, result: Interpretation) -> dict:

@@ -137,3 +137,63 @@ def test_read_episodes_keeps_numbers_and_skips_blank_lines(tmp_path):
     with pytest.raises(FileNotFoundError):
         read_episodes(tmp_path / "missing.jsonl")
     assert parse_episode({"id": "x", "instructions": []}) == {"id": "x", "instructions": []}
+
+
+# --- reading episodes files: one reader (corpus.io.read_jsonl), every error names its line -------------------
+def test_read_episodes_accepts_a_byte_order_mark(tmp_path):
+    """Editors on Windows save UTF-8 with a byte-order mark; line 1 is still an episode."""
+    path = tmp_path / "episodes.jsonl"
+    path.write_bytes(b"\xef\xbb\xbf" + b'{"id": "a", "instructions": ["put it on stud 500100"]}\r\n'
+                     + b'{"id": "b", "instructions": []}\r\n')
+    assert read_episodes(path) == [{"id": "a", "instructions": ["put it on stud 500100"]},
+                                   {"id": "b", "instructions": []}]
+
+
+@pytest.mark.parametrize("line, message", [
+    (b'{"id": "b", "instructions": ["caf\xff"]}', "line 3: not valid UTF-8 text (byte 0xff at position 34 of the line: invalid start byte)"),
+    (b'{"id": "b", "instructions": ["\xe2\x82"]}', "line 3: not valid UTF-8 text (byte 0xe2 at position 31"),
+    (b'{"id": "b", "instructions": ["\xed\xa0\x80"]}', "line 3: not valid UTF-8 text (byte 0xed"),  # a surrogate
+    (b'{"id": "b", "instructions": ["\\ud800"]}', "line 3: instruction 1 is not Unicode text"),
+    (b'{"id": "\\udfff", "instructions": []}', "line 3: the episode id is not Unicode text"),
+    (b'{"id": 1' + b"0" * 5000 + b', "instructions": []}', "line 3: not a JSON object"),  # past int's digit limit
+    (b"[" * 100_000 + b"]" * 100_000, "line 3: not a JSON object (nested too deeply)"),
+    (b'{"id": "a", "instructions": []} {"id": "b", "instructions": []}', "line 3: not a JSON object (Extra data"),
+    (b"\xef\xbb\xbf{}", "line 3: not a JSON object (a byte-order mark"),  # only the file's start may have one
+])
+def test_read_episodes_names_the_line_that_cannot_be_read(tmp_path, line, message):
+    path = tmp_path / "episodes.jsonl"
+    path.write_bytes(b'{"id": "fine", "instructions": ["x"]}\n\n' + line + b"\n")
+    with pytest.raises(ValueError) as info:
+        read_episodes(path)
+    assert str(info.value).startswith(f"{path}, line 3: ")
+    assert message in str(info.value)
+
+
+def test_read_episodes_reads_lines_split_only_at_newlines(tmp_path):
+    """U+2028, U+0085 and a lone carriage return are allowed inside JSON strings; they do not end a line."""
+    texts = ["a\u2028b", "c\x85d", "e\x1cf", "g\x00h"]
+    path = tmp_path / "episodes.jsonl"
+    path.write_bytes(json.dumps({"id": "u", "instructions": texts}, ensure_ascii=False).encode() + b"\n")
+    assert read_episodes(path) == [{"id": "u", "instructions": texts}]
+
+
+# --- the default tagger on input nobody meant (spec section 6: a record, never a traceback) --------------------
+def _words_nobody_says(n: int, seed: int = 0) -> str:
+    import random
+
+    rng = random.Random(seed)
+    return " ".join("".join(rng.choice("bcdfghjklmnpqrstvwxz") for _ in range(rng.randint(1, 9))) for _ in range(n))
+
+
+@pytest.mark.parametrize("text", [
+    "", " \t ", ".,;:!?", "%%% ### !!! ... ---", "\x00", "\x00\x01\x07\x1b\x7f", "\u2028\r\x0b\x0c",
+    "\u200b\u200d\ufeff", _words_nobody_says(10_000),
+], ids=["empty", "blank", "punctuation", "symbols", "nul", "controls", "line-separators", "zero-width",
+        "10000-words"])
+def test_default_tagger_and_rules_refuse_what_says_nothing(text):
+    from drywall_lab.nlu import default_tagger
+
+    [result] = run_episode({"id": "odd", "instructions": [text]}, default_tagger())
+    assert result.words == tokenize(text)
+    assert len(result.tags) == len(result.words)
+    assert result.command is None and result.refusal.reason == "undetermined", result.refusal

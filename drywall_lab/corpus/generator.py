@@ -200,8 +200,10 @@ def choose_ref(rng: random.Random, refs: dict[str, list], weights: dict[str, flo
     return rng.choice(refs[_weighted(rng, kinds)])
 
 
-def choose_command(rng: random.Random, ep: Episode) -> tuple[str, str, str] | None:
-    """A feasible command, placements weighted as in the paper's corpus; None when the wall is full."""
+def choose_command(rng: random.Random, ep: Episode,
+                   placement_weights: dict[str, float] = PLACEMENT_WEIGHTS) -> tuple[str, str, str] | None:
+    """A feasible command, placements weighted as in the paper's corpus (or by ``placement_weights``);
+    None when the wall is full."""
     options = feasible_commands(ep.state)
     if not options:
         return None
@@ -214,7 +216,7 @@ def choose_command(rng: random.Random, ep: Episode) -> tuple[str, str, str] | No
     by_placement: dict[str, list] = {}
     for c in options:
         by_placement.setdefault(c[2], []).append(c)
-    placement = _weighted(rng, {k: PLACEMENT_WEIGHTS[k] for k in by_placement})
+    placement = _weighted(rng, {k: placement_weights[k] for k in by_placement})
     candidates = by_placement[placement]
     if ep.history and rng.random() < 0.5:  # panels go up from left to right: often right next to the last one
         last_right = max(i.rect.x_right for i in ep.state.installed)
@@ -222,23 +224,36 @@ def choose_command(rng: random.Random, ep: Episode) -> tuple[str, str, str] | No
     return rng.choice(candidates)
 
 
-def command_meaning(rng: random.Random, ep: Episode) -> Meaning | None:
-    command = choose_command(rng, ep)
+@dataclass(frozen=True)
+class MeaningWeights:
+    """How often each kind of reference and each placement is chosen (the paper corpus's by default)."""
+
+    target: dict[str, float] = field(default_factory=lambda: dict(TARGET_WEIGHTS))
+    stud: dict[str, float] = field(default_factory=lambda: dict(STUD_WEIGHTS))
+    placement: dict[str, float] = field(default_factory=lambda: dict(PLACEMENT_WEIGHTS))
+
+
+PAPER_WEIGHTS = MeaningWeights()
+
+
+def command_meaning(rng: random.Random, ep: Episode, weights: MeaningWeights = PAPER_WEIGHTS) -> Meaning | None:
+    """A feasible command and the references the worker uses for it."""
+    command = choose_command(rng, ep, weights.placement)
     if command is None:
         return None
     panel_id, stud_id, placement = command
-    target = choose_ref(rng, target_refs(ep, panel_id), TARGET_WEIGHTS)
+    target = choose_ref(rng, target_refs(ep, panel_id), weights.target)
     if ep.last and ep.last["stud_id"] == stud_id and rng.random() < 0.6:
         stud = StudRef("same", anchor="previous")  # "the same stud as the previous one"
     else:
-        stud = choose_ref(rng, stud_refs(ep, stud_id), STUD_WEIGHTS)
+        stud = choose_ref(rng, stud_refs(ep, stud_id), weights.stud)
     expected = {"drywall_id": panel_id, "stud_id": stud_id, "placement": placement, "refusal": None}
     return Meaning(target, stud, placement, expected)
 
 
-def refusal_meaning(rng: random.Random, ep: Episode) -> Meaning | None:
+def refusal_meaning(rng: random.Random, ep: Episode, weights: MeaningWeights = PAPER_WEIGHTS) -> Meaning | None:
     """An instruction the spec says must be refused, with exactly one thing wrong."""
-    base = command_meaning(rng, ep)
+    base = command_meaning(rng, ep, weights)
     if base is None:
         return None
     site, state = ep.state.site, ep.state
@@ -301,8 +316,8 @@ def refusal_meaning(rng: random.Random, ep: Episode) -> Meaning | None:
     expected = {"drywall_id": None, "stud_id": None, "placement": None, "refusal": reason}
     if reason in ("past_wall_end", "overlap"):
         stud_id, placement = rng.choice(makers[reason]())
-        return Meaning(choose_ref(rng, target_refs(ep, top), TARGET_WEIGHTS), StudRef("id", stud_id=stud_id)
-                       if rng.random() < 0.6 else choose_ref(rng, stud_refs(ep, stud_id), STUD_WEIGHTS), placement, expected)
+        return Meaning(choose_ref(rng, target_refs(ep, top), weights.target), StudRef("id", stud_id=stud_id)
+                       if rng.random() < 0.6 else choose_ref(rng, stud_refs(ep, stud_id), weights.stud), placement, expected)
     target, stud = makers[reason]()
     return Meaning(target, stud, base.placement, expected)
 

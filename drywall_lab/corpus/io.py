@@ -1,10 +1,11 @@
 """Reading and writing the corpus: JSON lines, CoNLL, and a ``datasets.DatasetDict``."""
 from __future__ import annotations
 
+import codecs
 import json
 import re
 from pathlib import Path
-from typing import Iterable, Mapping
+from typing import Callable, Iterable, Mapping
 
 from drywall_lab.corpus.tags import COREF_TAGS, TAGS
 from drywall_lab.site import DATA_DIR
@@ -33,17 +34,44 @@ def tokenize(text: str) -> list[str]:
     return words
 
 
-def read_jsonl(path: Path | str) -> list[dict]:
-    """One JSON object a line; a clear error names the line that is not JSON."""
+def read_jsonl(path: Path | str, check: Callable[[object, str], dict] | None = None) -> list[dict]:
+    """One JSON object a line (blank lines skipped); a ``ValueError`` naming the file and line of any problem.
+
+    The file is UTF-8, with or without a byte-order mark at its start. Each line is decoded
+    on its own, so a byte that is not UTF-8 is reported with its line. ``check(value, where)``
+    turns each line's value into a row or raises a ``ValueError`` starting with ``where``
+    (``"FILE, line N"``); without it, every line must be a JSON object.
+    """
+    path = Path(path)
+    data = path.read_bytes()
+    if data.startswith(codecs.BOM_UTF8):
+        data = data[len(codecs.BOM_UTF8):]
     rows = []
-    with Path(path).open(encoding="utf-8") as f:
-        for number, line in enumerate(f, start=1):
-            if not line.strip():
-                continue
-            try:
-                rows.append(json.loads(line))
-            except json.JSONDecodeError as e:
-                raise ValueError(f"{path}, line {number}: not a JSON object ({e.msg})") from None
+    for number, raw in enumerate(data.split(b"\n"), start=1):
+        where = f"{path}, line {number}"
+        try:
+            line = raw.decode("utf-8")
+        except UnicodeDecodeError as e:
+            raise ValueError(f"{where}: not valid UTF-8 text (byte 0x{raw[e.start]:02x} at position {e.start + 1} "
+                             f"of the line: {e.reason})") from None
+        if not line.strip(" \t\r"):  # JSON's white space
+            continue
+        try:
+            value = json.loads(line)
+        except json.JSONDecodeError as e:
+            reason = ("a byte-order mark is allowed only at the start of the file" if line.startswith("\ufeff")
+                      else f"{e.msg} at position {e.colno}")
+            raise ValueError(f"{where}: not a JSON object ({reason})") from None
+        except RecursionError:
+            raise ValueError(f"{where}: not a JSON object (nested too deeply)") from None
+        except ValueError as e:  # e.g. an integer with more digits than Python converts
+            raise ValueError(f"{where}: not a JSON object ({e})") from None
+        if check is not None:
+            rows.append(check(value, where))
+        elif isinstance(value, dict):
+            rows.append(value)
+        else:
+            raise ValueError(f"{where}: not a JSON object (a JSON {type(value).__name__} value)")
     return rows
 
 

@@ -1,0 +1,706 @@
+"""The field corpus: every meaning of the paper corpus, said in the registers people use on a site.
+
+The paper corpus (``generator.py``) is kept as it is for the paper's study. It measures the
+generator more than language: a tagger trained on it is right on 100% of its test split and on
+about half of hand-written field instructions. The field corpus keeps the same episodes and
+meanings (``command_meaning`` and ``refusal_meaning``: every target and stud kind, the four
+placements, every refusal) and says them through a much richer grammar:
+
+- **registers**: formal, polite and hedging, foreman and trade talk, verbless fragments, lists and
+  key-value notes, speech-recogniser text (lowercase, fillers, restarts), radio, non-native word
+  order, self-corrections (the final intention counts; the abandoned words are ``O``), context or
+  a reason first, and questions;
+- **vocabulary** (``field_phrases.py``): trade nouns, sizes in one word and with feet marks, number
+  words, many wordings of each stack, stud and placement;
+- **noise**: dropped articles, inserted fillers, lost casing and punctuation, stutters and typos in
+  words that carry no tag.
+
+Every row has the paper corpus's fields (words, 13-label tags, co-reference tags, context, meaning,
+expected) plus its ``register``. With the gold tags every row gives its expected command or refusal
+through the information-mapping rules (tested). Splits: ``train`` (generated on demand, not committed),
+``validation`` and ``test`` (the same families as train), and ``novel``: only held-back families
+(``field_phrases.HELD_BACK``) wherever a bank has them.
+"""
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from drywall_lab.corpus import field_phrases as F
+from drywall_lab.corpus import generator as G
+from drywall_lab.corpus.io import read_jsonl, tokenize, write_jsonl
+from drywall_lab.corpus.markup import Phrase, Token, parse, plain, tagged
+from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_DIGITS, ORDINAL_WORDS, Chooser
+from drywall_lab.site import DATA_DIR, Site, default_site
+
+FIELD_SEED = 2026
+FIELD_DIR = DATA_DIR / "field_corpus"
+FIELD_SPLITS = ("train", "validation", "test", "novel")
+FIELD_SPLIT_SIZES = {"train": 20000, "validation": 1000, "test": 1000, "novel": 1000}
+#: The committed splits; ``train`` is regenerated from the seed when it is first needed (``field_split``).
+COMMITTED_SPLITS = ("validation", "test", "novel")
+FIELD_REFUSAL_RATE = 0.12  #: about one step in eight must be refused, as in hand-written field sets
+
+#: Meanings: references named about as often as people name them; every placement common.
+FIELD_WEIGHTS = G.MeaningWeights(
+    target={"id": 0.22, "size": 0.24, "standard": 0.14, "same": 0.16, "absolute": 0.12, "relative": 0.12},
+    stud={"id": 0.40, "absolute": 0.24, "relative": 0.36},
+    placement={"vertical_left": 0.34, "vertical_middle": 0.34, "horizontal_top": 0.16, "horizontal_bottom": 0.16},
+)
+#: How often each register is used.
+REGISTERS: dict[str, float] = {
+    "formal": 0.09, "polite": 0.09, "foreman": 0.12, "fragment": 0.11, "list": 0.07, "speech": 0.12,
+    "radio": 0.07, "non_native": 0.09, "correction": 0.09, "context": 0.07, "question": 0.08, "texting": 0.06,
+}
+
+
+# --- small pieces -----------------------------------------------------------------------------------------
+def punct(mark: str) -> Token:
+    """A punctuation mark: written after the word before it, not a word itself."""
+    return Token(mark, None, None)
+
+
+def words_of(ch: Chooser, bank: list[str]) -> Phrase:
+    """A template of plain words from a bank (may be empty)."""
+    return parse(ch.template(bank))
+
+
+def _number(ch: Chooser, n: int, tag: str, suffixes: tuple[str, ...] = ("",)) -> Phrase:
+    """A number as digits or a word, optionally with a feet mark glued on ("4'", "4ft", "four-foot")."""
+    digits = ch.chance(0.6) or n not in NUMBER_WORDS
+    suffix = ch.rng.choice(suffixes)
+    if not digits and suffix in ("ft", "'"):
+        suffix = "-foot"  # "eightft" is not a word anyone writes
+    word = (str(n) if digits else NUMBER_WORDS[n]) + suffix
+    return tagged(word, tag) if " " not in word else tagged(word.split()[0], tag) + plain(word.split()[1])
+
+
+def _ordinal(ch: Chooser, n: int) -> str:
+    return ORDINAL_DIGITS[n] if ch.chance(0.35) else ORDINAL_WORDS[n]
+
+
+DIGIT_NAMES = {"0": ("zero", "oh", "0"), "1": ("one", "1"), "2": ("two", "2"), "3": ("three", "3"), "4": ("four", "4"),
+               "5": ("five", "5"), "6": ("six", "6"), "7": ("seven", "7"), "8": ("eight", "8"), "9": ("nine", "9")}
+
+
+def id_phrase(ch: Chooser, ident: str, tag: str, read_out: float = 0.0) -> Phrase:
+    """An id, now and then written with a number sign ("#500107"); with chance ``read_out``, read out digit
+    by digit as on a radio ("five oh oh one oh seven"), every digit carrying the tag."""
+    if ch.chance(read_out):
+        as_words = ch.chance(0.7)
+        return [Token(DIGIT_NAMES[d][ch.rng.randrange(len(DIGIT_NAMES[d]) - 1)] if as_words else d, tag, tag)
+                for d in ident]
+    return tagged(("#" if ch.chance(0.06) else "") + ident, tag)
+
+
+def size_phrase(ch: Chooser, ref: G.TargetRef) -> Phrase:
+    """The size of the target as said: numbers tagged ``width`` / ``length`` (guidelines 3, 4.3 and 4.7)."""
+    a, b = ref.size
+    rng = ch.rng
+    if ref.kind == "width":  # "two-foot wide", "a 2' wide sheet"
+        form = rng.randrange(4)
+        if form == 0:
+            return _number(ch, a, "width", ("-foot", "-ft", "'")) + plain("wide")
+        if form == 1:
+            return tagged(f"{NUMBER_WORDS[a] if ch.chance(0.5) else a}-foot-wide", "width")
+        if form == 2:
+            return _number(ch, a, "width") + plain(rng.choice(["foot wide", "feet wide", "ft wide", "wide"]))
+        return plain(rng.choice(["width", "width of"])) + _number(ch, a, "width")
+    if ref.kind == "length":  # "a six-footer", "the 6 foot one", "six feet long"
+        form = rng.randrange(4)
+        if form == 0:
+            return _number(ch, b, "length") + plain(rng.choice(["foot long", "feet long", "ft long", "long"]))
+        if form == 1:
+            word = NUMBER_WORDS[b] if ch.chance(0.6) else str(b)
+            return tagged(f"{word}-footer", "length") if ch.novel else tagged(f"{word}-foot", "length") + plain("long")
+        if form == 2:
+            return _number(ch, b, "length", ("-foot", "'", " foot"))
+        return plain(rng.choice(["length", "length of"])) + _number(ch, b, "length")
+    if ref.length_first:  # "8 long by 4 wide": the words name the roles
+        first = _number(ch, b, "length") + plain(rng.choice(["long", "foot long", "feet long", "ft long"]))
+        second = _number(ch, a, "width") + plain(rng.choice(["wide", "foot wide", "feet wide", "ft wide"]))
+        return first + plain(rng.choice(["by", "and", "x", ""])) + second
+    form = rng.randrange(9)
+    if form <= 2:  # one word: "4x8", "4'x8'", "four-by-eight" (tagged width, guidelines 4.7)
+        if form == 0:
+            word = f"{a}{rng.choice(['x', 'X', 'x', '-by-', 'by'])}{b}"
+        elif form == 1:
+            word = f"{a}'{rng.choice(['x', 'X'])}{b}'"
+        else:
+            word = f"{NUMBER_WORDS[a]}-by-{NUMBER_WORDS[b]}"
+        return tagged(word, "width")
+    if form == 3:
+        return _number(ch, a, "width") + plain("x") + _number(ch, b, "length")
+    if form == 4:
+        return _number(ch, a, "width", ("'", "ft", "-foot")) + plain(rng.choice(["by", "x"])) + \
+            _number(ch, b, "length", ("'", "ft", "-foot"))
+    if form == 5:
+        return _number(ch, a, "width") + plain(rng.choice(["foot by", "feet by", "ft by"])) + \
+            _number(ch, b, "length") + plain(rng.choice(["foot", "feet", "ft", ""]))
+    if form == 6:
+        return _number(ch, a, "width") + plain(rng.choice(["wide", "feet wide", "across"])) + \
+            plain(rng.choice(["and", "by", ""])) + _number(ch, b, "length") + plain(rng.choice(["long", "feet long", "tall"]))
+    return _number(ch, a, "width") + plain("by") + _number(ch, b, "length")
+
+
+def direction_phrase(ch: Chooser, direction: str, count: int, tag: str, unit: str) -> Phrase:
+    """A tagged direction with its count: "two to the left", "2 studs right", "next one over to the right"."""
+    rng = ch.rng
+    side = rng.choice([direction, direction, f"{direction}-hand"]) if ch.chance(0.1) else direction
+    if count == 1:
+        form = rng.choice(["{d}", "{d}", "one to the {d}", "one {u} to the {d}", "one {d}", "1 {d}",
+                           "next {u} to the {d}", "one over to the {d}", "just to the {d}", "first {u} to the {d}"])
+    else:
+        form = rng.choice(["{n} to the {d}", "{n} {u}s to the {d}", "{n} {d}", "{o} to the {d}", "{o} {d}",
+                           "{n} over to the {d}", "{n} {u}s {d}", "{n} places to the {d}", "{o} {u} to the {d}",
+                           "{n} {u}s over to the {d}", "{n} {u}s further {d}"])
+    number = str(count) if ch.chance(0.4) else NUMBER_WORDS[count]
+    words = form.replace("{d}", side).replace("{n}", number).replace("{o}", _ordinal(ch, count))
+    out: Phrase = []
+    for w in words.split():
+        if w in ("{u}", "{u}s"):  # "studs", "piles": a generic noun inside the span stays O
+            out.append(Token(unit + w[3:], "O", "O"))
+        else:
+            out.append(Token(w, tag, tag))
+    return out
+
+
+# --- the three pieces of information ---------------------------------------------------------------------
+@dataclass
+class Pieces:
+    """Phrase makers for one meaning; ``terse`` drops articles and verbs (fragments, lists)."""
+
+    ch: Chooser
+    meaning: G.Meaning
+    read_out_ids: float = 0.0  #: chance that an id is read out digit by digit (radio, speech)
+
+    def noun(self) -> Phrase:
+        return words_of(self.ch, F.PANEL_NOUNS)
+
+    def target(self, terse: bool = False, ref: G.TargetRef | None = None) -> Phrase:
+        ch, ref = self.ch, ref or self.meaning.target
+        slots = {"noun": self.noun(), "idnoun": words_of(ch, F.ID_NOUNS), "plural": words_of(ch, F.PANEL_NOUNS_PLURAL),
+                 "stack": plain(ch.rng.choice(F.STACK_NOUNS))}
+        if ref.kind == "id":
+            return ch.say(F.TARGET_ID_TERSE if terse else F.TARGET_ID, id=id_phrase(ch, ref.panel_id, "ID_wall", self.read_out_ids), **slots)
+        if ref.kind in ("size", "width", "length"):
+            return ch.say(F.TARGET_SIZE_TERSE if terse else F.TARGET_SIZE, size=size_phrase(ch, ref), **slots)
+        if ref.kind == "standard":
+            return ch.say(F.TARGET_STANDARD_TERSE if terse else F.TARGET_STANDARD, std=words_of(ch, F.STANDARD_WORDS), **slots)
+        if ref.kind == "same":
+            return ch.say(F.TARGET_SAME_TERSE if terse else F.TARGET_SAME, **slots)
+        if ref.kind == "absolute":
+            where = ch.say(F.STACK_WHERE[ref.stack], stack=slots["stack"])
+            return ch.say(F.TARGET_STACK_TERSE if terse else F.TARGET_STACK, where=where, **slots)
+        if ref.kind == "relative":
+            unit = ch.rng.choice(["stack", "pile"])
+            direction = direction_phrase(ch, ref.direction, ref.count, "Dw_loc1", unit)
+            if ref.anchor == "previous":
+                anchor = ch.say(F.PANEL_ANCHOR_PREVIOUS, plainnoun=words_of(ch, F.ID_NOUNS), stack=slots["stack"])
+            else:
+                anchor = ch.say(F.PANEL_ANCHOR_ID, id=id_phrase(ch, ref.anchor, "Dw_loc2"),
+                                plainnoun=words_of(ch, F.ID_NOUNS), stack=slots["stack"])
+            return ch.say(F.TARGET_RELATIVE_TERSE if terse else F.TARGET_RELATIVE, dir=direction, anchor=anchor, **slots)
+        if ref.kind == "none":
+            return ch.say(F.TARGET_NONE, **slots)
+        raise ValueError(ref)
+
+    def stud(self, terse: bool = False, ref: G.StudRef | None = None) -> Phrase:
+        ch, ref = self.ch, ref or self.meaning.stud
+        stud = words_of(ch, F.STUD_NOUNS)
+        if ref.kind == "id":
+            return ch.say(F.STUD_ID_TERSE if terse else F.STUD_ID, id=id_phrase(ch, ref.stud_id, "ID_stud", self.read_out_ids), stud=stud)
+        if ref.kind == "absolute":
+            return ch.say((F.STUD_END_TERSE if terse else F.STUD_END)[ref.name], stud=stud)
+        if ref.kind == "from_end":
+            return ch.say(F.STUD_FROM_END_TERSE if terse else F.STUD_FROM_END, stud=stud,
+                          ord=tagged(_ordinal(ch, ref.nth), "St_loc1"), side=tagged(ref.side, "St_loc1"))
+        if ref.kind == "ordinal":
+            return ch.say(F.STUD_ORDINAL_TERSE if terse else F.STUD_ORDINAL, stud=stud,
+                          ord=tagged(_ordinal(ch, ref.nth), "St_loc1"))
+        if ref.kind == "same":
+            return ch.say(F.STUD_SAME_TERSE if terse else F.STUD_SAME, stud=stud)
+        if ref.kind == "relative":
+            direction = direction_phrase(ch, ref.direction, ref.count, "St_loc1", "stud")
+            if ref.anchor == "previous":
+                anchor = ch.say(F.STUD_ANCHOR_PREVIOUS)
+            elif ref.anchor in ("leftmost", "rightmost"):
+                anchor = ch.say(F.STUD_ANCHOR_END[ref.anchor])
+            else:
+                anchor = ch.say(F.STUD_ANCHOR_ID, id=id_phrase(ch, ref.anchor, "St_loc2"))
+            return ch.say(F.STUD_RELATIVE_TERSE if terse else F.STUD_RELATIVE, dir=direction, anchor=anchor, stud=stud)
+        if ref.kind == "none":
+            return ch.say(F.STUD_NONE)
+        raise ValueError(ref)
+
+    def placement(self, placement: str | None = None) -> Phrase:
+        return self.ch.say(F.PLACEMENT[placement or self.meaning.placement], stud=words_of(self.ch, F.STUD_NOUNS))
+
+    def placement_sentence(self) -> Phrase | None:
+        """A sentence of its own for the placement ("Put it up top."); None for the unsaid default."""
+        p = self.placement()
+        if not p:
+            return None
+        return self.ch.say(F.PLACEMENT_SENTENCE, p=p)
+
+
+# --- alternatives for a change of mind ------------------------------------------------------------------
+def abandoned_target(rng: random.Random, ep: G.Episode, meaning: G.Meaning) -> G.TargetRef:
+    """A different panel the worker names first and then takes back."""
+    panel = meaning.expected["drywall_id"]
+    site = ep.state.site
+    others = [p.drywall_id for p in site.panels if p.drywall_id != panel]
+    choice = rng.random()
+    if choice < 0.5:
+        return G.TargetRef("id", panel_id=rng.choice(others))
+    if choice < 0.8:
+        stacks = [s for s in ("left", "middle", "right") if panel is None or site.panel(panel).stack != s]
+        return G.TargetRef("absolute", stack=rng.choice(stacks))
+    sizes = [(4, 8), (2, 8), (4, 6)]
+    if panel is not None:
+        own = site.panel(panel).size_ft
+        sizes = [s for s in sizes if (float(s[0]), float(s[1])) != tuple(own)]
+    return G.TargetRef("size", size=rng.choice(sizes))
+
+
+def abandoned_stud(rng: random.Random, meaning: G.Meaning) -> G.StudRef:
+    stud = meaning.expected["stud_id"]
+    ids = [f"5001{i:02d}" for i in range(13) if f"5001{i:02d}" != stud]
+    return G.StudRef("id", stud_id=rng.choice(ids))
+
+
+def as_plain(phrase: Phrase) -> Phrase:
+    """The same words, every one ``O``: what a worker said and then took back (guidelines 4.7)."""
+    return [Token(t.word, "O", "O") if t.is_word else t for t in phrase]
+
+
+# --- registers: sentence plans ---------------------------------------------------------------------------
+Sentences = list[Phrase]
+
+
+@dataclass
+class Speaker:
+    """Builds the sentences of one instruction in one register."""
+
+    ch: Chooser
+    meaning: G.Meaning
+    ep: G.Episode
+    register: str = "formal"
+
+    def __post_init__(self) -> None:
+        self.p = Pieces(self.ch, self.meaning, read_out_ids=0.3 if self.register in ("radio", "speech") else 0.0)
+
+    # words
+    def w(self, bank: list[str]) -> Phrase:
+        return words_of(self.ch, bank)
+
+    def pick(self) -> Phrase:
+        return self.w(F.PICK_VERBS)
+
+    def place(self) -> Phrase:
+        return self.w(F.PLACE_VERBS)
+
+    def prep(self) -> Phrase:
+        return self.w(F.PREPOSITIONS)
+
+    def it(self) -> Phrase:
+        return parse(self.ch.rng.choice(["it/@T", "it/@T", "it/@T", "that/@T", "this/@T one/@T", "her/@T", "the {n}"]),
+                     n=self.p.noun())
+
+    def T(self, terse: bool = False) -> Phrase:
+        return self.p.target(terse)
+
+    def D(self, terse: bool = False) -> Phrase:
+        return self.p.stud(terse)
+
+    def P(self) -> Phrase:
+        return self.p.placement()
+
+    def form(self, names: list[str]) -> str:
+        """Which sentence frame: a name from ``names``; a ``~`` name is a held-back frame (novel split only)."""
+        return self.ch.template(names)
+
+    def end(self, phrase: Phrase, mark: str = ".") -> Phrase:
+        return phrase + [punct(mark)]
+
+    def comma(self) -> Phrase:
+        return [punct(",")]
+
+    # registers
+    def formal(self) -> Sentences:
+        ch, T, D, P = self.ch, self.T, self.D, self.P
+        form = ch.rng.randrange(6)
+        opener = self.w(["", "please", "please", "I would like you to", "I need you to", "next, please"])
+        if form == 0:
+            return [self.end(opener + self.pick() + T() + plain("and") + self.place() + self.it() + self.prep() + D() + P())]
+        if form == 1:
+            return [self.end(opener + self.place() + T() + self.prep() + D() + P())]
+        if form == 2:
+            return [self.end(opener + self.pick() + T()), self.end(self.place() + self.it() + self.prep() + D() + P())]
+        if form == 3:
+            out = [self.end(plain("the next panel is") + T()), self.end(plain("it goes") + self.prep() + D() + P())]
+            return out
+        if form == 4:
+            return [self.end(opener + self.place() + T() + P() + self.prep() + D())]
+        sentences = [self.end(opener + self.pick() + T() + plain("and") + self.place() + self.it() + self.prep() + D())]
+        p = self.p.placement_sentence()
+        return sentences + ([self.end(p)] if p else [])
+
+    def polite(self) -> Sentences:
+        ch, T, D, P = self.ch, self.T, self.D, self.P
+        q = self.w(F.QUESTION_OPENERS)
+        hedge = self.w(F.HEDGES)
+        form = int(self.form(["0", "1", "2", "3", "5", "~4"]))
+        if form == 0:
+            return [self.end(q + self.pick() + T() + plain("and") + self.place() + self.it() + self.prep() + D() + P(), "?")]
+        if form == 1:
+            return [self.end(hedge + plain("we need") + T() + plain("next")),
+                    self.end(q + self.place() + self.it() + self.prep() + D() + P(), "?")]
+        if form == 2:
+            return [self.end(plain("sorry to bother you") + self.comma() + q + self.place() + T() + self.prep() + D() + P()
+                             + plain("please"), "?")]
+        if form == 3:
+            return [self.end(plain("if you could") + self.comma() + self.pick() + T() + plain("and") + self.place()
+                             + self.it() + self.prep() + D() + P()), self.end(plain("thank you so much"))]
+        if form == 4:
+            return [self.end(self.place() + T() + self.prep() + D() + P() + self.comma()
+                             + plain(ch.rng.choice(["if that works for you", "if that's alright", "if you can"])), "?")]
+        return [self.end(hedge + plain("it should be") + T()),
+                self.end(plain("and") + hedge + plain("it goes") + self.prep() + D() + P())]
+
+    def foreman(self) -> Sentences:
+        ch, T, D, P = self.ch, self.T, self.D, self.P
+        form = ch.rng.randrange(7)
+        if form == 0:
+            return [self.end(T() + self.prep() + D() + self.comma() + P())]
+        if form == 1:
+            return [self.end(self.pick() + T() + self.comma() + self.place() + self.it() + self.prep() + D() + P())]
+        if form == 2:
+            return [self.end(T() + plain("goes") + self.prep() + D() + P())]
+        if form == 3:
+            out = [self.end(plain(ch.rng.choice(["next one's", "next is", "now", "next"])) + T()), self.end(D(True))]
+            p = P()
+            return out + ([self.end(p)] if p else [])
+        if form == 4:
+            return [self.end(plain("get") + T() + plain("up") + self.prep() + D() + P() + self.comma()
+                             + plain(ch.rng.choice(["let's go", "come on", "move it", "chop chop", "today"])))]
+        if form == 5:
+            return [self.end(self.place() + T() + P() + self.prep() + D())]
+        return [self.end(T() + self.comma() + D() + self.comma() + P() + self.comma() + plain("go"))]
+
+    def fragment(self) -> Sentences:
+        ch = self.ch
+        T, D, P = self.T(True), self.D(True), self.P()
+        form = ch.rng.randrange(6)
+        if form == 0:
+            return [self.end(T), self.end(D)] + ([self.end(P)] if P else [])
+        if form == 1:
+            return [T + D + P]
+        if form == 2:
+            return [self.end(T + self.comma() + D + (self.comma() + P if P else []))]
+        if form == 3:
+            return [self.end(T + plain(ch.rng.choice(["to", "on", "onto", "at", "->"])) + D + P)]
+        if form == 4:
+            return [self.end(D + self.comma() + T + (self.comma() + P if P else []))]
+        return [self.end(T + plain("on") + D), self.end(P)] if P else [self.end(T + plain("on") + D)]
+
+    def listing(self) -> Sentences:
+        ch = self.ch
+        T, D, P = self.T(True), self.D(True), self.P()
+        form = int(self.form(["0", "1", "2", "4", "5", "~3"]))
+        colon = [punct(":")]
+        if form == 0:
+            out = plain(ch.rng.choice(["panel", "sheet", "board", "what"])) + colon + T + [punct(";")] + \
+                plain(ch.rng.choice(["stud", "where", "location", "dest"])) + colon + D
+            if P:
+                out += [punct(";")] + plain(ch.rng.choice(["placement", "how", "orientation", "position"])) + colon + P
+            return [out]
+        if form == 1:
+            out = plain("sheet -") + T + plain("| stud -") + D + (plain("|") + P if P else [])
+            return [out]
+        if form == 2:
+            return [plain("target") + T + self.comma() + plain("destination") + D + (self.comma() + P if P else [])]
+        if form == 3:  # a numbered checklist
+            return [plain("1)") + self.pick() + T + plain("2)") + self.place() + plain("on") + D
+                    + (plain("3)") + P if P else [])]
+        if form == 4:
+            out = [self.end(plain("what") + colon + T), self.end(plain("where") + colon + D)]
+            return out + ([self.end(plain("how") + colon + P)] if P else [])
+        return [plain("*") + T + plain("*") + D + (plain("*") + P if P else [])]
+
+    def speech(self) -> Sentences:
+        """Spoken: a foreman's or polite frame; ``render`` lowercases it and adds fillers and restarts."""
+        return self.foreman() if self.ch.chance(0.5) else self.formal()
+
+    def radio(self) -> Sentences:
+        ch, T, D, P = self.ch, self.T, self.D, self.P
+        call = self.w(F.RADIO_CALLS)
+        end = self.w(F.RADIO_ENDS)
+        form = int(self.form(["0", "1", "2", "4", "~3"]))
+        if form == 0:
+            return [self.end(call + self.comma() + T() + self.prep() + D() + P() + self.comma() + end)]
+        if form == 4:
+            return [self.end(self.w(F.CALL_SIGNS)), self.end(T() + self.prep() + D() + P() + self.comma() + end)]
+        if form == 1:
+            return [self.end(T() + plain("to") + D() + self.comma() + P()), self.end(end)]
+        if form == 2:
+            return [self.end(call), self.end(plain("next") + T() + self.comma() + self.place() + plain("on") + D() + P()),
+                    self.end(end)]
+        return [self.end(self.w(F.CALL_SIGNS) + self.comma() + T() + self.prep() + D() + P()),
+                self.end(plain(ch.rng.choice(["over and out", "how copy", "over and out"])))]
+
+    def non_native(self) -> Sentences:
+        ch, T, D, P = self.ch, self.T, self.D, self.P
+        form = ch.rng.randrange(6)
+        if form == 0:
+            return [self.end(plain("you") + self.pick() + T() + plain("and") + self.place() + plain("on") + D() + P())]
+        if form == 1:
+            return [self.end(plain("please to") + self.place() + T() + plain(ch.rng.choice(["on", "in", "at"])) + D() + P())]
+        if form == 2:
+            return [self.end(self.place() + plain(ch.rng.choice(["on", "in", "at"])) + self.D(True) + plain("the") + T(True) + P())]
+        if form == 3:
+            return [self.end(plain(ch.rng.choice(["begin from", "start from", "start in", "begin in"])) + D()
+                             + self.comma() + self.place() + T() + P())]
+        if form == 4:
+            return [self.end(T() + plain("you") + self.place() + plain("it in") + D() + P())]
+        return [self.end(plain(ch.rng.choice(["now is", "now it is", "is"])) + T() + self.comma()
+                         + plain(ch.rng.choice(["for", "in", "to"])) + D() + self.comma() + P())]
+
+    def correction(self) -> Sentences:
+        """A change of mind: something is said and taken back; only the final words carry tags."""
+        ch, rng = self.ch, self.ch.rng
+        fix = self.w(F.CORRECTIONS)
+        tail = self.w(F.CORRECTION_ENDS)
+        which = rng.choice(["target", "stud", "placement"]) if self.meaning.target.kind != "none" else "stud"
+        if which == "target":
+            wrong = as_plain(self.p.target(ch.chance(0.4), abandoned_target(rng, self.ep, self.meaning)))
+            return [self.end(self.place() + wrong + self.comma() + fix + self.comma() + self.T() + tail + self.prep()
+                             + self.D() + self.P())]
+        if which == "stud" and self.meaning.stud.kind != "none":
+            wrong = as_plain(self.p.stud(ch.chance(0.4), abandoned_stud(rng, self.meaning)))
+            return [self.end(self.place() + self.T() + self.prep() + wrong + self.comma() + fix + self.comma()
+                             + self.D() + tail + self.P())]
+        others = [p for p in F.PLACEMENT if p != self.meaning.placement and p != "vertical_left"]
+        wrong = as_plain(self.p.placement(rng.choice(others)))
+        right = self.P() or plain(rng.choice(["the normal way", "just upright", "regular, upright", "standing up"]))
+        return [self.end(self.place() + self.T() + self.prep() + self.D() + wrong + self.comma() + fix + self.comma()
+                         + right + tail)]
+
+    def context(self) -> Sentences:
+        ch = self.ch
+        reason = plain(ch.rng.choice(F.CONTEXT))
+        body = self.formal() if ch.chance(0.4) else self.foreman()
+        if ch.chance(0.5):
+            return [self.end(reason)] + body
+        first = body[0]
+        return [reason + self.comma() + self.w(F.CONTEXT_LINKS) + first] + body[1:]
+
+    def question(self) -> Sentences:
+        ch, T, D, P = self.ch, self.T, self.D, self.P
+        form = ch.rng.randrange(4)
+        if form == 0:
+            return [self.end(self.w(F.QUESTION_OPENERS) + self.place() + T() + self.prep() + D() + P(), "?")]
+        if form == 1:
+            return [self.end(plain("how about") + T() + plain("on") + D() + P(), "?")]
+        if form == 2:
+            return [self.end(plain("is") + D() + plain("free"), "?"), self.end(self.place() + T() + plain("there") + P())]
+        return [self.end(plain("what if we") + self.place() + T() + self.prep() + D() + P(), "?")]
+
+    def texting(self) -> Sentences:
+        """A phone message: a fragment or a foreman's line; ``render`` abbreviates it (``texting_forms``)."""
+        return self.fragment() if self.ch.chance(0.5) else self.foreman()
+
+    def sentences(self) -> Sentences:
+        register = self.register
+        maker: Callable[[], Sentences] = {
+            "formal": self.formal, "polite": self.polite, "foreman": self.foreman, "fragment": self.fragment,
+            "list": self.listing, "speech": self.speech, "radio": self.radio, "non_native": self.non_native,
+            "correction": self.correction, "context": self.context, "question": self.question,
+            "texting": self.texting,
+        }[register]
+        return [s for s in maker() if any(t.is_word for t in s)]
+
+
+# --- rendering and noise ------------------------------------------------------------------------------
+#: Words that a hurried worker or a speech recogniser drops; never tagged, never a correction marker.
+DROPPABLE = frozenset({"the", "a", "an", "it", "please", "and", "that", "is", "for", "then", "now", "up"})
+CASING = {"typed": 0.55, "lower": 0.35, "upper": 0.04, "no_first_capital": 0.06}
+
+
+def _typo(rng: random.Random, word: str) -> str:
+    i = rng.randrange(len(word) - 1)
+    kind = rng.randrange(3)
+    if kind == 0:
+        return word[:i] + word[i + 1] + word[i] + word[i + 2:]  # swapped letters
+    if kind == 1:
+        return word[:i] + word[i + 1:]  # a letter missing
+    return word[:i] + word[i] + word[i:]  # a letter twice
+
+
+def add_noise(ch: Chooser, sentences: Sentences, spoken: bool) -> Sentences:
+    """Dropped articles, fillers, stutters and restarts, typos: only in words that carry no tag."""
+    rng = ch.rng
+    drop_p = 0.12 if spoken or ch.chance(0.3) else 0.0
+    filler_p = 0.08 if spoken else (0.02 if ch.chance(0.3) else 0.0)
+    typo_p = 0.03 if ch.chance(0.25) else 0.0
+    out: Sentences = []
+    for sentence in sentences:
+        new: Phrase = []
+        for tok in sentence:
+            if tok.is_word and tok.tag == "O":
+                lower = tok.word.lower()
+                if lower in DROPPABLE and rng.random() < drop_p:
+                    continue
+                if rng.random() < filler_p:
+                    new += plain(rng.choice(F.FILLERS))
+                if spoken and rng.random() < 0.03:
+                    new.append(Token(tok.word, "O", "O"))  # a stutter: "put put the ..."
+                if typo_p and len(tok.word) >= 4 and tok.word.isalpha() and rng.random() < typo_p:
+                    tok = Token(_typo(rng, tok.word), "O", tok.coref)
+            new.append(tok)
+        if spoken and rng.random() < 0.12:  # a restart: "put the uh put the 4x8 ..."
+            k = rng.randint(1, 3)
+            head = new[:k]
+            if len(head) == k and all(t.is_word and t.tag == "O" for t in head):
+                new = head + plain(rng.choice(["uh", "um", "I mean", "sorry"])) + new
+        out.append(new)
+    return out
+
+
+#: Short forms in phone messages. Words the rules read (``from``, ``left``, ...) are shortened only to forms
+#: that ``drywall_lab.im.words.SPELLINGS`` spells out again.
+TEXTING_FORMS = {
+    "please": ("pls", "plz"), "thanks": ("thx", "thnx"), "you": ("u",), "your": ("ur",), "are": ("r",),
+    "and": ("n", "&"), "okay": ("k", "ok"), "with": ("w",), "from": ("frm", "fr"), "before": ("b4",),
+    "right": ("rt",), "left": ("lft",), "centre": ("ctr",), "center": ("cntr", "ctr"), "previous": ("prev",),
+    "next": ("nxt",), "through": ("thru",), "because": ("bc", "cuz"),
+}
+
+
+def texting_forms(ch: Chooser, sentences: Sentences) -> Sentences:
+    """Half the words that have a short form are written short ("pls put it frm the lft pile")."""
+    out: Sentences = []
+    for sentence in sentences:
+        new: Phrase = []
+        for tok in sentence:
+            forms = TEXTING_FORMS.get(tok.word.lower()) if tok.is_word else None
+            if forms and ch.rng.random() < 0.5:
+                tok = Token(ch.rng.choice(forms), tok.tag, tok.coref)
+            new.append(tok)
+        out.append(new)
+    return out
+
+
+def render(ch: Chooser, sentences: Sentences, spoken: bool) -> tuple[str, list[str], list[str], list[str]]:
+    """Text, words, tags and co-reference tags; casing and punctuation as typed, lost, or shouted."""
+    casing = "lower" if spoken else G._weighted(ch.rng, CASING)
+    keep_punctuation = not spoken and ch.rng.random() < 0.85
+    pieces: list[str] = []
+    words: list[str] = []
+    tags: list[str] = []
+    coref: list[str] = []
+    for sentence in sentences:
+        first = True
+        for tok in sentence:
+            if not tok.is_word:
+                if keep_punctuation and pieces:
+                    pieces[-1] += tok.word
+                continue
+            w = tok.word
+            if casing == "lower":
+                w = w.lower()
+            elif casing == "upper":
+                w = w.upper()
+            elif first and casing == "typed":
+                w = w[0].upper() + w[1:]
+            first = False
+            clean = tokenize(w)
+            if len(clean) != 1:
+                raise ValueError(f"{w!r} is not one word when tokenized: {clean}")
+            words.append(clean[0])
+            tags.append(tok.tag)
+            coref.append(tok.coref)
+            pieces.append(w)
+    return " ".join(pieces), words, tags, coref
+
+
+# --- episodes and splits ------------------------------------------------------------------------------
+def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict]:
+    ch = Chooser(rng, novel=(split == "novel"))
+    rows: list[dict] = []
+    episode_no = 0
+    while len(rows) < n:
+        ep = G.Episode(site.fresh())
+        length = rng.randint(1, 8)
+        for step in range(length):
+            if len(rows) >= n:
+                break
+            refuse = rng.random() < FIELD_REFUSAL_RATE
+            meaning = (G.refusal_meaning if refuse else G.command_meaning)(rng, ep, FIELD_WEIGHTS)
+            if meaning is None:
+                break
+            register = G._weighted(rng, REGISTERS)
+            spoken = register in ("speech", "texting") or (register in ("radio", "correction") and rng.random() < 0.5)
+            sentences = Speaker(ch, meaning, ep, register).sentences()
+            sentences = add_noise(ch, sentences, spoken)
+            if register == "texting":
+                sentences = texting_forms(ch, sentences)
+            text, words, tags, coref = render(ch, sentences, spoken)
+            if not words:
+                continue
+            rows.append({
+                "id": f"field-{split}-{len(rows):05d}",
+                "text": text,
+                "words": words,
+                "tags": tags,
+                "coref_tags": coref,
+                "n_sentences": len(sentences),
+                "register": register,
+                "context": {"episode": f"field-{split}-ep{episode_no:05d}", "step": step,
+                            "history": [dict(h) for h in ep.history]},
+                "meaning": meaning.describe(),
+                "expected": meaning.expected,
+            })
+            if meaning.expected["refusal"] is None:
+                e = meaning.expected
+                ep.state = ep.state.install(e["drywall_id"], e["stud_id"], e["placement"])
+                ep.history.append({k: e[k] for k in ("drywall_id", "stud_id", "placement")})
+        episode_no += 1
+    return rows
+
+
+def generate_field_split(split: str, n: int | None = None, seed: int = FIELD_SEED, site: Site | None = None) -> list[dict]:
+    """``n`` field instructions of one split (``FIELD_SPLIT_SIZES`` by default), deterministic for a seed.
+
+    Like the paper corpus, a draw that misses one of the meanings every split must contain is
+    drawn again from the next sub-seed.
+    """
+    if split not in FIELD_SPLITS:
+        raise ValueError(f"unknown field split {split!r}; the field corpus has {', '.join(FIELD_SPLITS)}")
+    n = FIELD_SPLIT_SIZES[split] if n is None else n
+    site = site or default_site()
+    for attempt in range(100):
+        rows = _split_once(split, n, random.Random(f"field-{seed}-{split}-{attempt}"), site)
+        if n < 500 or not G.missing_meanings(rows):
+            return rows
+    raise RuntimeError(f"{split}: no draw contained every meaning; missing {sorted(G.missing_meanings(rows))}")
+
+
+def write_field_corpus(out_dir: Path | str = FIELD_DIR, seed: int = FIELD_SEED,
+                       splits: tuple[str, ...] = FIELD_SPLITS) -> dict[str, Path]:
+    """Write ``{split}.jsonl`` for each split; the same seed always gives the same bytes."""
+    return {s: write_jsonl(generate_field_split(s, seed=seed), Path(out_dir) / f"{s}.jsonl") for s in splits}
+
+
+def field_split(split: str, corpus_dir: Path | str | None = None) -> list[dict]:
+    """The rows of one field split; ``train`` is generated (and cached in ``data/field_corpus/``) when missing."""
+    if split not in FIELD_SPLITS:
+        raise ValueError(f"unknown field split {split!r}; the field corpus has {', '.join(FIELD_SPLITS)}")
+    path = Path(corpus_dir or FIELD_DIR) / f"{split}.jsonl"
+    if not path.is_file():
+        if split in COMMITTED_SPLITS and corpus_dir is None:
+            raise FileNotFoundError(f"{path} is missing: run `python -m drywall_lab corpus generate --field`")
+        write_jsonl(generate_field_split(split), path)
+    return read_jsonl(path)

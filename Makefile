@@ -9,7 +9,7 @@ export DRYWALL_FAST
 # JupyterLab refuses to run as root unless told (containers, CI machines).
 LAB_ARGS ?= $(if $(filter 0,$(shell id -u)),--allow-root,)
 
-.PHONY: setup lab demo test corpus default-tagger clean
+.PHONY: setup lab demo test corpus default-tagger tagger-scores clean
 
 $(BIN)/.installed: environment.txt pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -31,12 +31,22 @@ test: setup  ## the whole test suite, executed notebooks included
 corpus: setup  ## regenerate data/corpus from the fixed seed
 	$(BIN)/python -m drywall_lab corpus generate
 
-TAGGER_DIR := drywall_lab/models/default_tagger
+TAGGER_DIR ?= drywall_lab/models/default_tagger
 default-tagger: setup  ## retrain the shipped BiLSTM-CRF (seed 0, ~2 min on 2 CPU cores) and record its scores
 	$(BIN)/python -m drywall_lab train bilstm-crf --out $(TAGGER_DIR) --seed 0
+	$(MAKE) --no-print-directory tagger-scores TAGGER_DIR=$(TAGGER_DIR)
+
+# scores.txt: per split, evaluate's last line (acc_word acc_inst n_instructions acc_task). Written
+# to a temporary file first: if any evaluation fails, make stops and the old scores.txt stays.
+tagger-scores: setup  ## score the tagger in TAGGER_DIR on validation/test/novel into TAGGER_DIR/scores.txt
+	set -e; tmp="$(TAGGER_DIR)/scores.txt.tmp"; trap 'rm -f "$$tmp"' EXIT; \
 	for split in validation test novel; do \
-	  printf '%s ' $$split; $(BIN)/python -m drywall_lab evaluate --tagger $(TAGGER_DIR) --split $$split | tail -n 1; \
-	done > $(TAGGER_DIR)/scores.txt
+	  output=$$($(BIN)/python -m drywall_lab evaluate --tagger $(TAGGER_DIR) --split $$split); \
+	  result=$$(printf '%s\n' "$$output" | tail -n 1); \
+	  case "$$result" in acc_word=*acc_task=*) ;; *) echo "evaluate on $$split gave no result line" >&2; exit 1;; esac; \
+	  echo "$$split $$result"; \
+	done > "$$tmp"; \
+	mv "$$tmp" $(TAGGER_DIR)/scores.txt
 	cat $(TAGGER_DIR)/scores.txt
 
 clean:

@@ -17,20 +17,28 @@ This script times, on the test split (158 instructions) and on the CPU:
 
 Every figure is the wall time of ``tagger.predict(...)`` (``time.perf_counter``), after warm-up:
 
-- *single*: each test instruction alone, ``predict([words])``, repeated ``--repeats`` times
-  (once for bert_base); p50 and p95 over all calls, and the mean per sentence-count group;
-- *batched*: the whole test split in batches of ``--batch-size``, ``predict(batch)``, repeated
-  ``--repeats`` times; each batch's time divided by its size gives a per-instruction time; p50
-  and p95 over those.
+- *single*: each test instruction alone, ``predict([words])``, ``--passes`` times (once for
+  bert_base); p50 and p95 over all calls, and the mean per sentence-count group;
+- *batched*: the whole test split in batches of ``--batch-size``, ``predict(batch)``, ``--passes``
+  times; each batch's time divided by its size gives a per-instruction time; p50 and p95 over those.
 
-Run from the repository root: ``python benchmarks/latency.py [--bert DIR]``; the last line reads
-``lstm_p50_ms=... minilm_p50_ms=... bert_base_p50_ms=...`` (single-instruction p50).
+The whole measurement is run ``--repeats`` times (default 5), with the machine's load average read
+before and after each run; the figures reported are the MEDIAN over the runs. The script writes its
+results file itself (``--out``, default ``benchmarks/results/latency.md``): the machine, the date,
+the exact command, the load of every run, every run's figures and their medians.
+
+Run from the repository root: ``python benchmarks/latency.py [--bert DIR] [--repeats N]``; the last
+line printed reads ``lstm_p50_ms=... minilm_p50_ms=... bert_base_p50_ms=...`` (single-instruction
+p50, median over the runs). ``--quick`` is a seconds-long check of the script itself (a few
+instructions, two runs): its figures mean nothing.
 """
 from __future__ import annotations
 
 import argparse
 import os
-import platform
+import shlex
+import statistics
+import sys
 import time
 from pathlib import Path
 
@@ -39,22 +47,18 @@ import pandas as pd
 import torch
 
 from drywall_lab.corpus import read_split
+from drywall_lab.machine import describe_machine, format_load, load_average
 from drywall_lab.nlu import BertTagger, default_encoder_path, default_tagger, load_tagger
 from drywall_lab.nlu.bert import _quiet_transformers
 
 #: Targets of the project's issue: single-instruction p50 on a 2-core CPU.
 TARGETS_MS = {"lstm": 2.0, "minilm": 10.0}
 PAPER_GROUP_SECONDS = {1: 0.0224, 2: 0.0176, 3: 0.0324, 4: 0.0606}
-
-
-def cpu_model() -> str:
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
+RESULTS = Path(__file__).resolve().parent / "results" / "latency.md"
+#: What ``--quick`` shrinks the benchmark to: a check that the script runs, not a measurement.
+QUICK = {"instructions": 3, "passes": 1, "repeats": 2, "train_size": 4, "batch_size": 2,
+         "bert_base_size": {"num_hidden_layers": 1, "hidden_size": 64, "num_attention_heads": 1,
+                            "intermediate_size": 128}}
 
 
 def minilm_tagger(directory: str | None, train_rows: list[dict]) -> tuple[BertTagger, str, float | None]:
@@ -68,12 +72,13 @@ def minilm_tagger(directory: str | None, train_rows: list[dict]) -> tuple[BertTa
     return tagger, f"fine-tuned here: 1 epoch on {info['n_train_instructions']} instructions", info["wall_seconds"]
 
 
-def random_bert_base_tagger(labels: list[str]) -> BertTagger:
-    """A BertTagger around a randomly initialised bert-base-sized token classifier (BertConfig defaults)."""
+def random_bert_base_tagger(labels: list[str], size: dict[str, int] | None = None) -> BertTagger:
+    """A BertTagger around a randomly initialised bert-base-sized token classifier (BertConfig defaults;
+    ``size`` overrides them, as ``--quick`` does with a tiny one)."""
     from transformers import AutoTokenizer, BertConfig, BertForTokenClassification
 
     config = BertConfig(num_labels=len(labels), id2label=dict(enumerate(labels)),
-                        label2id={t: i for i, t in enumerate(labels)})
+                        label2id={t: i for i, t in enumerate(labels)}, **(size or {}))
     tagger = BertTagger(labels=labels)
     with _quiet_transformers():
         tagger.tokenizer = AutoTokenizer.from_pretrained(str(default_encoder_path()), local_files_only=True)
@@ -81,24 +86,24 @@ def random_bert_base_tagger(labels: list[str]) -> BertTagger:
     return tagger
 
 
-def time_single(tagger, sentences: list[list[str]], repeats: int, warmup: int = 10) -> np.ndarray:
-    """Seconds per ``predict([words])`` call, shape (repeats, len(sentences))."""
+def time_single(tagger, sentences: list[list[str]], passes: int, warmup: int = 10) -> np.ndarray:
+    """Seconds per ``predict([words])`` call, shape (passes, len(sentences))."""
     for words in sentences[:warmup]:
         tagger.predict([words])
-    out = np.empty((repeats, len(sentences)))
-    for r in range(repeats):
+    out = np.empty((passes, len(sentences)))
+    for p in range(passes):
         for i, words in enumerate(sentences):
             t0 = time.perf_counter()
             tagger.predict([words])
-            out[r, i] = time.perf_counter() - t0
+            out[p, i] = time.perf_counter() - t0
     return out
 
 
-def time_batched(tagger, sentences: list[list[str]], batch_size: int, repeats: int) -> np.ndarray:
-    """Seconds per instruction of each batch (batch time / batch size), over ``repeats`` passes."""
+def time_batched(tagger, sentences: list[list[str]], batch_size: int, passes: int) -> np.ndarray:
+    """Seconds per instruction of each batch (batch time / batch size), over ``passes`` passes."""
     tagger.predict(sentences[:batch_size], batch_size=batch_size)  # warm-up
     out = []
-    for _ in range(repeats):
+    for _ in range(passes):
         for start in range(0, len(sentences), batch_size):
             batch = sentences[start : start + batch_size]
             t0 = time.perf_counter()
@@ -107,85 +112,205 @@ def time_batched(tagger, sentences: list[list[str]], batch_size: int, repeats: i
     return np.array(out)
 
 
-def main(argv: list[str] | None = None) -> int:
+def one_run(run: int, models: dict, sentences: list[list[str]], groups: np.ndarray, batch_size: int
+            ) -> tuple[dict, list[dict], list[dict]]:
+    """Time every model once; returns (the run's load and wall time, a row per model, a row per model and group)."""
+    before, started = load_average(), time.perf_counter()
+    rows, group_rows = [], []
+    for name, (tagger, _what, passes) in models.items():
+        single = time_single(tagger, sentences, passes)
+        batched = time_batched(tagger, sentences, batch_size, passes)
+        rows.append({"run": run, "model": name,
+                     "single_p50_ms": 1e3 * np.percentile(single, 50), "single_p95_ms": 1e3 * np.percentile(single, 95),
+                     "single_mean_ms": 1e3 * single.mean(),
+                     "batched_p50_ms": 1e3 * np.percentile(batched, 50),
+                     "batched_p95_ms": 1e3 * np.percentile(batched, 95),
+                     "calls": f"{single.size} single, {batched.size} batches"})
+        per_instruction = single.mean(axis=0)
+        for g in sorted(set(groups)):
+            group_rows.append({"run": run, "model": name, "sentences": int(g),
+                               "mean_ms": 1e3 * per_instruction[groups == g].mean()})
+    after = load_average()
+    return {"run": run, "load_before": before, "load_after": after, "wall_s": time.perf_counter() - started}, rows, group_rows
+
+
+def median_table(rows: pd.DataFrame) -> pd.DataFrame:
+    """Per model, the median over the runs of every figure (the order of the models kept)."""
+    figures = [c for c in rows.columns if c.endswith("_ms")]
+    return rows.groupby("model", sort=False)[figures].median()
+
+
+def summary_line(medians: pd.DataFrame) -> str:
+    """``lstm_p50_ms=... minilm_p50_ms=... bert_base_p50_ms=...``: single-instruction p50, median over the runs."""
+    return " ".join(f"{name}_p50_ms={row['single_p50_ms']:.2f}" for name, row in medians.iterrows())
+
+
+def target_lines(medians: pd.DataFrame) -> list[str]:
+    """The issue's targets against the median single-instruction p50."""
+    lines = []
+    for name, target in TARGETS_MS.items():
+        p50 = medians.loc[name, "single_p50_ms"]
+        lines.append(f"target {name} single p50 < {target:g} ms: {'met' if p50 < target else 'MISSED'} "
+                     f"({p50:.2f} ms, median over the runs)")
+    return lines
+
+
+def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--bert", metavar="DIR", help="a saved MiniLM BertTagger to time (default: fine-tune one briefly)")
-    parser.add_argument("--repeats", type=int, default=3, help="passes over the test split (bert_base: 1)")
+    parser.add_argument("--repeats", type=int, default=5, metavar="N",
+                        help="run the whole measurement N times and report the median (default 5)")
+    parser.add_argument("--passes", type=int, default=3, help="passes over the test split in each run (bert_base: 1)")
     parser.add_argument("--batch-size", type=int, default=32)
     parser.add_argument("--train-size", type=int, default=100, help="instructions for the brief MiniLM fine-tuning")
     parser.add_argument("--threads", type=int, default=os.cpu_count() or 1)
+    parser.add_argument("--out", type=Path, default=None,
+                        help="the results file to write (default benchmarks/results/latency.md)")
+    parser.add_argument("--quick", action="store_true",
+                        help="a seconds-long check that the script works: a few instructions, two runs; "
+                             "the figures mean nothing")
     args = parser.parse_args(argv)
+    if args.quick:
+        args.passes, args.repeats = QUICK["passes"], QUICK["repeats"]
+        args.train_size, args.batch_size = QUICK["train_size"], QUICK["batch_size"]
+    if args.out is None:
+        if args.quick:
+            parser.error("--quick figures mean nothing: give --out FILE so that they do not replace the recorded results")
+        args.out = RESULTS
+    for name in ("repeats", "passes", "batch_size", "train_size", "threads"):
+        if getattr(args, name) < 1:
+            parser.error(f"--{name.replace('_', '-')} must be at least 1, got {getattr(args, name)}")
+    return args
 
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args = parse_args(argv)
+    command = shlex.join(["python", "benchmarks/latency.py", *argv])
     torch.set_num_threads(args.threads)
-    test = read_split("test")
+    test = read_split("test")[: QUICK["instructions"] if args.quick else None]
     sentences = [r["words"] for r in test]
     groups = np.array([r["n_sentences"] for r in test])
+    machine = describe_machine()
     started = time.perf_counter()
-    print(f"machine: {cpu_model()}, {os.cpu_count()} logical cores, torch {torch.__version__} "
-          f"with {torch.get_num_threads()} threads; test split: {len(test)} instructions, "
-          f"{sum(map(len, sentences))} words; instructions by sentence count "
-          f"{ {int(g): int((groups == g).sum()) for g in sorted(set(groups))} }; "
-          f"load average at start {os.getloadavg()[0]:.2f} (other jobs on the machine slow every figure)")
+    print(f"machine: {machine.summary()}")
+    print(f"test split: {len(test)} instructions, {sum(map(len, sentences))} words; by sentence count "
+          f"{ {int(g): int((groups == g).sum()) for g in sorted(set(groups))} }; {args.repeats} runs", flush=True)
 
     lstm = default_tagger()
     minilm, minilm_source, minilm_train_s = minilm_tagger(args.bert, read_split("train")[: args.train_size])
-    bert_base = random_bert_base_tagger(list(minilm.labels))
+    bert_base = random_bert_base_tagger(list(minilm.labels), QUICK["bert_base_size"] if args.quick else None)
     models = {
-        "lstm": (lstm, "shipped default BiLSTM-CRF", args.repeats),
-        "minilm": (minilm, f"BertTagger, MiniLM encoder ({minilm_source})", args.repeats),
-        "bert_base": (bert_base, "BertTagger, bert-base-sized encoder, random weights", 1),
+        "lstm": (lstm, "shipped default BiLSTM-CRF", args.passes),
+        "minilm": (minilm, f"BertTagger, MiniLM encoder ({minilm_source})", args.passes),
+        "bert_base": (bert_base, "BertTagger, " + ("a tiny stand-in for the bert-base-sized encoder (--quick)"
+                                                   if args.quick else "bert-base-sized encoder") + ", random weights", 1),
     }
 
-    rows, group_rows = [], []
-    for name, (tagger, what, repeats) in models.items():
-        single = time_single(tagger, sentences, repeats)
-        batched = time_batched(tagger, sentences, args.batch_size, args.repeats)
-        rows.append({
-            "model": name, "parameters": tagger.n_parameters(),
-            "single_p50_ms": 1e3 * np.percentile(single, 50), "single_p95_ms": 1e3 * np.percentile(single, 95),
-            "single_mean_ms": 1e3 * single.mean(),
-            "batched_p50_ms": 1e3 * np.percentile(batched, 50), "batched_p95_ms": 1e3 * np.percentile(batched, 95),
-            "calls": f"{single.size} single, {batched.size} batches", "what": what,
-        })
-        per_instruction = single.mean(axis=0)
-        for g in sorted(set(groups)):
-            group_rows.append({"model": name, "sentences": int(g), "instructions": int((groups == g).sum()),
-                               "mean_ms": 1e3 * per_instruction[groups == g].mean(),
-                               "paper_gpu_ms (bert-base)": 1e3 * PAPER_GROUP_SECONDS.get(int(g), float("nan"))})
-        print(f"  timed {name} ({time.perf_counter() - started:.0f} s so far)", flush=True)
+    runs, rows, group_rows = [], [], []
+    for run in range(1, args.repeats + 1):
+        info, run_rows, run_groups = one_run(run, models, sentences, groups, args.batch_size)
+        runs.append(info)
+        rows += run_rows
+        group_rows += run_groups
+        print(f"  run {run}: load {format_load(info['load_before'])} before, {format_load(info['load_after'])} after; "
+              + " ".join(f"{r['model']}={r['single_p50_ms']:.2f}" for r in run_rows), flush=True)
 
-    table = pd.DataFrame(rows).set_index("model")
-    pd.set_option("display.width", 200)
-    pd.set_option("display.max_colwidth", 80)
-    print("\nPer-instruction prediction time on the test split (ms; single = one instruction per predict call,"
-          f" batched = batches of {args.batch_size}):")
-    print(table.drop(columns=["what"]).round(2).to_string())
-    for name, row in table.iterrows():
-        print(f"  {name}: {row['what']}")
-    print("\nMean single-instruction time by number of sentences (ms):")
-    print(pd.DataFrame(group_rows).pivot(index="sentences", columns="model", values="mean_ms").round(2)
-          .assign(**{"paper, bert-base on a GPU": [1e3 * PAPER_GROUP_SECONDS.get(g, float("nan")) for g in sorted(set(groups))],
-                     "instructions": [int((groups == g).sum()) for g in sorted(set(groups))]}).to_string())
+    per_run = pd.DataFrame(rows)
+    medians = median_table(per_run)
+    groups_median = (pd.DataFrame(group_rows).groupby(["sentences", "model"], sort=False)["mean_ms"].median()
+                     .unstack("model")[list(models)])
+    groups_median["paper, bert-base on a GPU"] = [1e3 * PAPER_GROUP_SECONDS.get(g, float("nan")) for g in groups_median.index]
+    groups_median["instructions"] = [int((groups == g).sum()) for g in groups_median.index]
+    training = training_lines(lstm, minilm_train_s, args)
+    targets = target_lines(medians)
+    line = summary_line(medians)
+    total = time.perf_counter() - started
+    for text in ["", medians.round(2).to_string(), "", *training, "", *targets, line]:
+        print(text)
+    write_results(args.out, command=command, machine=machine, args=args, n_instructions=len(test), runs=runs,
+                  per_run=per_run, medians=medians, groups_median=groups_median,
+                  what={name: what for name, (_, what, _) in models.items()}, training=training,
+                  targets=targets, line=line, total_seconds=total)
+    print(f"wrote {args.out}")
+    return 0
 
-    print("\nTraining wall time:")
+
+def training_lines(lstm, minilm_train_s: float | None, args: argparse.Namespace) -> list[str]:
+    """Training wall times as recorded by the taggers (plus the extrapolation, marked as one)."""
     info = lstm.training_info
-    print(f"  lstm (LSTM-M1, shipped): {info['wall_seconds']:.1f} s for {info['epochs']} epochs on "
-          f"{info['n_train_instructions']} instructions (training_info['wall_seconds'] of the default tagger)")
+    lines = [f"lstm (LSTM-M1, shipped): {info['wall_seconds']:.1f} s for {info['epochs']} epochs on "
+             f"{info['n_train_instructions']} instructions (training_info['wall_seconds'] of the default tagger)"]
     if minilm_train_s is not None and not args.bert:
         per = minilm_train_s / args.train_size
-        print(f"  minilm: {minilm_train_s:.1f} s for 1 epoch on {args.train_size} instructions = {per:.3f} s per "
-              f"instruction-epoch; the paper's BERT-M1 (5 epochs on 1,268) would take about {per * 5 * 1268 / 60:.0f} min "
-              "at that rate (an extrapolation, not a measurement)")
+        lines.append(f"minilm: {minilm_train_s:.1f} s for 1 epoch on {args.train_size} instructions = {per:.3f} s per "
+                     f"instruction-epoch; the paper's BERT-M1 (5 epochs on 1,268) would take about "
+                     f"{per * 5 * 1268 / 60:.0f} min at that rate (an extrapolation, not a measurement)")
     elif minilm_train_s is not None:
-        print(f"  minilm ({args.bert}): {minilm_train_s:.1f} s (training_info['wall_seconds'])")
+        lines.append(f"minilm ({args.bert}): {minilm_train_s:.1f} s (training_info['wall_seconds'])")
+    return lines
 
-    print()
-    for name, target in TARGETS_MS.items():
-        p50 = table.loc[name, "single_p50_ms"]
-        print(f"target {name} single p50 < {target:g} ms: {'met' if p50 < target else 'MISSED'} ({p50:.2f} ms)")
-    print(f"total benchmark time: {time.perf_counter() - started:.0f} s; load average at the end {os.getloadavg()[0]:.2f}")
-    print(" ".join(f"{name}_p50_ms={table.loc[name, 'single_p50_ms']:.2f}" for name in models))
-    return 0
+
+def write_results(path: Path, *, command: str, machine, args: argparse.Namespace, n_instructions: int,
+                  runs: list[dict], per_run: pd.DataFrame, medians: pd.DataFrame, groups_median: pd.DataFrame,
+                  what: dict[str, str], training: list[str], targets: list[str], line: str,
+                  total_seconds: float) -> None:
+    """The results file: machine, date, command, every run with its load, the medians, the targets."""
+    loads = pd.DataFrame([{"run": r["run"], "load before (1, 5, 15 min)": format_load(r["load_before"]),
+                           "load after": format_load(r["load_after"]), "wall_s": round(r["wall_s"], 1)} for r in runs])
+    p50s = per_run.pivot(index="run", columns="model", values="single_p50_ms")[list(medians.index)]
+    text = [
+        "# NLU prediction latency (`benchmarks/latency.py`)",
+        "",
+        f"Written by `{command}` (repository root, the project's `.venv`), {machine.date}; "
+        f"{total_seconds:.0f} s in all.",
+        *(["", "**`--quick`: a check that the script runs, on a few instructions; these figures mean nothing.**"]
+          if args.quick else []),
+        "",
+        "## Machine",
+        "",
+        *machine.markdown_lines(),
+        "",
+        f"What is timed: the wall time of `tagger.predict(...)` on {n_instructions} test instructions after warm-up; "
+        f"*single* = one instruction a call (passes over the instructions: {args.passes}, 1 for bert_base), "
+        f"*batched* = batches of {args.batch_size} (passes: {args.passes}), per-instruction time = batch time / "
+        "batch size. "
+        f"The whole measurement ran {args.repeats} times; every figure below is the median over those runs. "
+        "The 1-minute load average counts this benchmark's own threads too.",
+        "",
+        *[f"- `{name}`: {text}" for name, text in what.items()],
+        "",
+        "## Median over the runs (ms per instruction)",
+        "",
+        "```",
+        medians.round(2).to_string(),
+        "```",
+        "",
+        "```",
+        line,
+        "```",
+        "",
+        *[f"- {t}" for t in targets],
+        "",
+        "## Every run: load average and single-instruction p50 (ms)",
+        "",
+        "```",
+        loads.merge(p50s.round(2), left_on="run", right_index=True).to_string(index=False),
+        "```",
+        "",
+        "## Mean single-instruction time by number of sentences (ms, median over the runs)",
+        "",
+        "```",
+        groups_median.round(2).to_string(),
+        "```",
+        "",
+        "## Training wall time",
+        "",
+        *[f"- {t}" for t in training],
+        "",
+    ]
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\n".join(text), encoding="utf-8")
 
 
 if __name__ == "__main__":

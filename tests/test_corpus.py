@@ -1,9 +1,10 @@
 """The instruction corpus, checked against the spec's sections 1-3 and the paper's Table 2.
 
 The committed files ``data/corpus/*.jsonl`` are what the project ships; the first
-test regenerates them and compares bytes, so a change to the generator (or to a
-phrase bank) shows up here without anyone having to regenerate the data. The other
-tests read the committed files.
+test regenerates them (``python -m drywall_lab corpus generate``, once for the whole
+session: the ``regenerated_corpus`` fixture of ``tests/conftest.py``) and compares bytes,
+so a change to the generator (or to a phrase bank) shows up here without anyone having to
+regenerate the data. The other tests read the committed files.
 
 The information mapping used in ``test_meaning_gives_expected`` is written here
 from the spec's section 3 on purpose, independently of the project's own mapping,
@@ -15,7 +16,6 @@ from __future__ import annotations
 import re
 from collections import Counter
 from itertools import groupby
-from pathlib import Path
 
 import pytest
 from hypothesis import given, settings
@@ -36,7 +36,6 @@ from drywall_lab.corpus import (
     tag_table,
     to_conll,
     tokenize,
-    write_corpus,
 )
 from drywall_lab.corpus import phrases as P
 from drywall_lab.corpus.markup import parse
@@ -56,22 +55,15 @@ def corpus() -> dict[str, list[dict]]:
     return read_corpus()
 
 
-@pytest.fixture(scope="module")
-def written(tmp_path_factory) -> Path:
-    """The corpus written afresh with the project's seed (generated once for the module)."""
-    out = tmp_path_factory.mktemp("corpus")
-    write_corpus(out, seed=SEED)
-    return out
-
-
 def all_rows(corpus, splits=SPLITS):
     return [r for s in splits for r in corpus[s]]
 
 
 # --- 1. determinism ------------------------------------------------------------------
 @pytest.mark.parametrize("split", SPLITS)
-def test_write_corpus_matches_committed_files(written, split):
-    fresh = (written / f"{split}.jsonl").read_bytes()
+def test_write_corpus_matches_committed_files(regenerated_corpus, split):
+    assert regenerated_corpus.exit_code == 0
+    fresh = (regenerated_corpus.out_dir / f"{split}.jsonl").read_bytes()
     committed = (CORPUS_DIR / f"{split}.jsonl").read_bytes()
     assert fresh == committed, f"{split}.jsonl: the generator no longer gives the committed data"
 

@@ -22,7 +22,7 @@ All functions are pure and take tag lists, one list per instruction, gold first:
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 import numpy as np
@@ -44,9 +44,6 @@ class TaggingScores:
     n_instruction_errors: int  #: N_l
     acc_word: float
     acc_inst: float
-
-    def as_dict(self) -> dict[str, float | int]:
-        return asdict(self)
 
 
 def _check_same_shape(gold: TagLists, predicted: TagLists) -> None:

@@ -1,0 +1,249 @@
+"""The machine a figure was measured on (drywall_lab.machine), and the timing scripts that record it.
+
+``benchmarks/latency.py`` and ``benchmarks/placement.py`` run ``--quick`` here (seconds, figures that
+mean nothing) to check that they write their own results file with the machine, the date, the exact
+command and the load average before and after every run, and report the median over the runs.
+"""
+from __future__ import annotations
+
+import datetime as dt
+import importlib.util
+import os
+import re
+import statistics
+from pathlib import Path
+from types import ModuleType
+
+import pandas as pd
+import pytest
+import torch
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from drywall_lab.machine import (
+    Machine,
+    cpu_model,
+    cpu_model_from_cpuinfo,
+    describe_machine,
+    format_load,
+    load_average,
+)
+
+REPO = Path(__file__).resolve().parent.parent
+README = REPO / "README.md"
+
+X86 = """processor\t: 0
+vendor_id\t: AuthenticAMD
+model name\t: AMD EPYC 7B13
+cpu MHz\t\t: 2450.000
+
+processor\t: 1
+model name\t: AMD EPYC 7B13
+"""
+ARM = """processor\t: 0
+BogoMIPS\t: 108.00
+Features\t: fp asimd
+
+Hardware\t: BCM2835
+Model\t\t: Raspberry Pi 4 Model B Rev 1.4
+"""
+
+
+def load_script(name: str) -> ModuleType:
+    """A script of ``benchmarks/`` imported as a module (it is not a package)."""
+    spec = importlib.util.spec_from_file_location(f"benchmark_{name}", REPO / "benchmarks" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+# --- drywall_lab.machine ------------------------------------------------------------------------
+def test_cpu_model_from_cpuinfo() -> None:
+    assert cpu_model_from_cpuinfo(X86) == "AMD EPYC 7B13"
+    assert cpu_model_from_cpuinfo(ARM) == "BCM2835"
+    assert cpu_model_from_cpuinfo("") is None
+    assert cpu_model_from_cpuinfo("processor : 0\nmodel name :\n") is None  # an empty value is no model
+
+
+@settings(max_examples=60, deadline=None)
+@given(name=st.text(st.characters(blacklist_categories=("Cc", "Cs", "Zl", "Zp")), min_size=1, max_size=40)
+       .filter(lambda s: s.strip() != ""),
+       before=st.lists(st.sampled_from(["processor : 3", "flags : fpu vme", "cpu MHz : 1.0", ""]), max_size=4))
+def test_model_name_is_found_wherever_it_is(name: str, before: list[str]) -> None:
+    text = "\n".join([*before, f"model name\t: {name}", "model name\t: another CPU"])
+    assert cpu_model_from_cpuinfo(text) == name.strip()
+
+
+def test_cpu_model_without_cpuinfo_still_names_something(tmp_path) -> None:
+    assert cpu_model(tmp_path / "no-such-file")  # platform's answer, never empty
+    (tmp_path / "cpuinfo").write_text(X86)
+    assert cpu_model(tmp_path / "cpuinfo") == "AMD EPYC 7B13"
+
+
+def test_format_load() -> None:
+    assert format_load((0.5, 1.25, 2.0)) == "0.50, 1.25, 2.00 (1, 5, 15 min)"
+    assert format_load(None) == "not available"
+
+
+def test_load_average_is_the_systems(monkeypatch) -> None:
+    monkeypatch.setattr(os, "getloadavg", lambda: (3.0, 2.0, 1.0))
+    assert load_average() == (3.0, 2.0, 1.0)
+    monkeypatch.delattr(os, "getloadavg")  # as on Windows
+    assert load_average() is None
+
+
+def test_describe_machine_now() -> None:
+    before = dt.datetime.now(dt.timezone.utc).replace(microsecond=0)
+    m = describe_machine()
+    when = dt.datetime.strptime(m.date, "%Y-%m-%d %H:%M:%S UTC").replace(tzinfo=dt.timezone.utc)
+    assert before <= when <= dt.datetime.now(dt.timezone.utc)
+    assert m.logical_cores == os.cpu_count()
+    assert m.cpu == cpu_model()
+    assert m.torch == torch.__version__ and m.torch_threads == torch.get_num_threads()
+    assert (m.gpu is None) == (not torch.cuda.is_available())
+    assert m.load_average is not None and len(m.load_average) == 3 and min(m.load_average) >= 0
+    summary = m.summary()
+    assert m.cpu in summary and f"{m.logical_cores} logical cores" in summary
+    assert f"load average {format_load(m.load_average)}" in summary and m.date in summary
+    lines = m.markdown_lines()
+    assert f"- cpu: {m.cpu}" in lines and f"- date: {m.date}" in lines
+    assert f"- load average: {format_load(m.load_average)}" in lines
+
+
+def test_describe_machine_at_a_given_time_is_in_utc() -> None:
+    plus_two = dt.timezone(dt.timedelta(hours=2))
+    assert describe_machine(dt.datetime(2026, 3, 1, 12, 30, 5, tzinfo=plus_two)).date == "2026-03-01 10:30:05 UTC"
+
+
+def test_a_machine_without_gpu_or_torch_says_so() -> None:
+    m = Machine(cpu="X", logical_cores=1, gpu=None, torch=None, torch_threads=None, python="3.11.7",
+                platform="p", load_average=None, date="2026-01-01 00:00:00 UTC")
+    assert m.summary() == ("X, 1 logical cores, no GPU, no torch, Python 3.11.7; load average not available; "
+                           "2026-01-01 00:00:00 UTC")
+    assert "- gpu: none" in m.markdown_lines() and "- torch threads: None" not in m.markdown_lines()
+
+
+def test_cpuinfo_is_read_in_one_place() -> None:
+    """The experiment and both timing scripts use drywall_lab.machine, not their own /proc/cpuinfo parser."""
+    sources = [*sorted((REPO / "drywall_lab").rglob("*.py")), *sorted((REPO / "benchmarks").glob("*.py"))]
+    readers = [p.relative_to(REPO).as_posix() for p in sources if "cpuinfo" in p.read_text(encoding="utf-8")]
+    assert readers == ["drywall_lab/machine.py"]
+    for script in ("benchmarks/latency.py", "benchmarks/placement.py", "benchmarks/bert_settings.py",
+                   "drywall_lab/nlu/experiments.py"):
+        assert "describe_machine" in (REPO / script).read_text(encoding="utf-8"), script
+
+
+# --- the timing scripts -------------------------------------------------------------------------
+@pytest.mark.parametrize("name", ["latency", "placement"])
+def test_timing_script_help(name: str, capsys) -> None:
+    with pytest.raises(SystemExit) as stop:
+        load_script(name).main(["--help"])
+    assert stop.value.code == 0
+    out = capsys.readouterr().out
+    for option in ("--repeats", "--out", "--quick"):
+        assert option in out
+
+
+@pytest.mark.parametrize("name", ["latency", "placement"])
+def test_quick_figures_never_replace_the_recorded_results(name: str, capsys) -> None:
+    with pytest.raises(SystemExit) as stop:
+        load_script(name).main(["--quick"])
+    assert stop.value.code == 2
+    assert "--out" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["latency", "placement"])
+def test_repeats_must_be_positive(name: str, capsys) -> None:
+    with pytest.raises(SystemExit) as stop:
+        load_script(name).main(["--repeats", "0", "--out", "unused.md"])
+    assert stop.value.code == 2
+    assert "--repeats" in capsys.readouterr().err
+
+
+def test_latency_reports_the_median_of_the_runs() -> None:
+    latency = load_script("latency")
+    runs = pd.DataFrame([{"run": r, "model": m, "single_p50_ms": v, "batched_p50_ms": 2 * v}
+                         for r, values in enumerate([(1.0, 9.0), (5.0, 7.0), (2.0, 30.0)], start=1)
+                         for m, v in zip(("lstm", "minilm"), values)])
+    medians = latency.median_table(runs)
+    assert medians.loc["lstm", "single_p50_ms"] == 2.0 and medians.loc["minilm", "single_p50_ms"] == 9.0
+    assert medians.loc["minilm", "batched_p50_ms"] == 18.0
+    assert latency.summary_line(medians) == "lstm_p50_ms=2.00 minilm_p50_ms=9.00"
+    assert latency.target_lines(medians) == ["target lstm single p50 < 2 ms: MISSED (2.00 ms, median over the runs)",
+                                            "target minilm single p50 < 10 ms: met (9.00 ms, median over the runs)"]
+
+
+def test_placement_compares_the_physics_of_the_runs() -> None:
+    placement = load_script("placement")
+    first = pd.DataFrame([{c: 0.0 for c in placement.PHYSICS} | {"wall_s": 1.0}] * 2)
+    assert placement.physics_differences([first, first.assign(wall_s=5.0)]) == []  # wall time may differ
+    moved = first.copy()
+    moved.loc[1, "pos_err_mm"] = 0.5
+    assert placement.physics_differences([first, first, moved]) == ["run 3: pos_err_mm differ from run 1"]
+    assert placement.physics_differences([first, first.iloc[:1]]) == ["run 2: 1 placements instead of 2"]
+
+
+def written_by(text: str, command: str) -> None:
+    """The provenance every results file must carry."""
+    assert f"Written by `{command}`" in text
+    machine = describe_machine()
+    assert f"- cpu: {machine.cpu}" in text and f"- logical cores: {machine.logical_cores}" in text
+    assert re.search(r"\d{4}-\d\d-\d\d \d\d:\d\d:\d\d UTC", text)
+
+
+def test_latency_quick_writes_its_results(tmp_path, capsys) -> None:
+    out = tmp_path / "latency.md"
+    assert load_script("latency").main(["--quick", "--out", str(out)]) == 0
+    text = out.read_text(encoding="utf-8")
+    written_by(text, f"python benchmarks/latency.py --quick --out {out}")
+    assert "`--quick`" in text and "these figures mean nothing" in text
+    table = text.split("## Every run: load average and single-instruction p50 (ms)")[1].split("```")[1]
+    rows = [line for line in table.splitlines() if re.match(r"\s+\d+ ", line)]
+    assert len(rows) == 2 and all(line.count("(1, 5, 15 min)") == 2 for line in rows)  # load before and after
+    p50s = [[float(x) for x in line.split()[-3:]] for line in rows]
+    line = re.search(r"lstm_p50_ms=(\S+) minilm_p50_ms=(\S+) bert_base_p50_ms=(\S+)", text)
+    for i in range(3):  # the reported figure is the median of the runs (rounded as printed)
+        assert float(line.group(i + 1)) == pytest.approx(statistics.median(r[i] for r in p50s), abs=0.011)
+    assert capsys.readouterr().out.rstrip().splitlines()[-2] == line.group(0)
+
+
+def test_placement_quick_writes_its_results(tmp_path, capsys) -> None:
+    out = tmp_path / "placement.md"
+    assert load_script("placement").main(["--quick", "--out", str(out)]) == 0
+    text = out.read_text(encoding="utf-8")
+    written_by(text, f"python benchmarks/placement.py --quick --out {out}")
+    assert "Physics: identical in every run" in text
+    runs = text.split("## Every run")[1].split("```")[1]
+    rows = [line for line in runs.splitlines() if re.match(r"\s+\d+ ", line)]
+    assert len(rows) == 2 and all(line.count("(1, 5, 15 min)") == 2 for line in rows)
+    factors = [float(line.split()[-1]) for line in rows]
+    summary = re.search(r"success_rate=1\.000 max_pos_err_mm=\S+ max_ang_err_deg=\S+ realtime_factor=(\S+)", text)
+    assert float(summary.group(1)) == pytest.approx(statistics.median(factors), abs=0.051)
+    assert summary.group(0) in capsys.readouterr().out
+
+
+# --- the README quotes what the scripts wrote ---------------------------------------------------
+def last_summary(text: str, pattern: str) -> str:
+    found = re.findall(pattern, text)
+    assert found, f"no line like {pattern!r}"
+    return found[-1]
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="benchmarks/results/latency.md is still assembled by hand: run "
+                   "`python benchmarks/latency.py`, quote its last line in the README, then drop this mark")
+def test_readme_quotes_the_latency_results() -> None:
+    text = (REPO / "benchmarks" / "results" / "latency.md").read_text(encoding="utf-8")
+    assert "Written by `python benchmarks/latency.py" in text and "--quick" not in text.split("\n", 3)[2]
+    line = last_summary(text, r"lstm_p50_ms=\S+ minilm_p50_ms=\S+ bert_base_p50_ms=\S+")
+    assert f"`{line}`" in README.read_text(encoding="utf-8")
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="benchmarks/results/placement.md is one run written by the old script: run "
+                   "`python benchmarks/placement.py`, quote its summary line in the README, then drop this mark")
+def test_readme_quotes_the_placement_results() -> None:
+    text = (REPO / "benchmarks" / "results" / "placement.md").read_text(encoding="utf-8")
+    assert "Written by `python benchmarks/placement.py" in text and "--quick" not in text.split("\n", 3)[2]
+    line = last_summary(text, r"success_rate=\S+ max_pos_err_mm=\S+ max_ang_err_deg=\S+ realtime_factor=\S+")
+    assert f"`{line}`" in README.read_text(encoding="utf-8")

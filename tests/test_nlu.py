@@ -7,9 +7,11 @@ small models reach with the fixed seeds, with a margin.
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import re
 
+import numpy as np
 import pandas as pd
 import pytest
 import torch
@@ -19,6 +21,7 @@ from hypothesis import strategies as st
 from drywall_lab.corpus import read_split
 from drywall_lab.corpus.tags import COREF_TAGS, TAGS
 from drywall_lab.nlu import (
+    CHAR_FEATURES,
     DEFAULT_TAGGER_DIR,
     HISTORY_COLUMNS,
     BertTagger,
@@ -27,15 +30,23 @@ from drywall_lab.nlu import (
     TaggerNotTrainedError,
     acc_inst,
     acc_word,
+    beam_kbest,
+    character_vocabulary,
     confusion_pairs,
     count_instruction_errors,
     count_word_errors,
+    crf_kbest,
+    crf_log_partition,
+    crf_marginals,
+    crf_sequence_scores,
     default_tagger,
     error_examples,
     fallback_token,
     load_tagger,
+    resolve_device,
     score_tagging,
     split_into_pieces,
+    subword_marginals,
     tag_error_table,
     vote_word_tags,
     word_key,
@@ -79,6 +90,21 @@ def small_bert(train_rows, validation_rows) -> BertTagger:
     tagger = BertTagger(learning_rate=3e-4)
     tagger.fit(train_rows, validation_rows[:40], epochs=1, progress=False, seed=0)
     return tagger
+
+
+@pytest.fixture(scope="module")
+def char_lstm(train_rows) -> BiLstmCrfTagger:
+    # A tiny network with the character CNN, trained for a few seconds.
+    tagger = BiLstmCrfTagger(embedding_dim=16, hidden_size=16, char_embedding_dim=8, char_filters=12, epochs=3,
+                             learning_rate=1e-2)
+    tagger.fit(train_rows[:60], progress=False, seed=0, device="cpu")
+    return tagger
+
+
+@pytest.fixture
+def no_gpu(monkeypatch):
+    """A machine without a CUDA GPU, whatever this one has."""
+    monkeypatch.setattr(torch.cuda, "is_available", lambda: False)
 
 
 def _with_unseen_ids(rows: list[dict]) -> list[dict]:
@@ -222,6 +248,8 @@ def test_the_default_tagger_is_shipped_small_and_accurate() -> None:
     tagger = load_tagger(DEFAULT_TAGGER_DIR)
     assert isinstance(tagger, BiLstmCrfTagger) and tagger.labels == list(TAGS)
     assert tagger.n_parameters() == json.loads((DEFAULT_TAGGER_DIR / "tagger.json").read_text())["n_parameters"]
+    # saved before character features existed: it loads as the paper's network, without them
+    assert not tagger.uses_characters and tagger.network.char_cnn is None and tagger.device == "cpu"
     assert sum(f.stat().st_size for f in DEFAULT_TAGGER_DIR.iterdir()) < 4_000_000
     assert len(tagger.history) == 20
     test_scores = tagger.evaluate(read_split("test"))
@@ -247,6 +275,262 @@ def test_the_coreference_variant(train_rows) -> None:
     assert {t for tags in predicted for t in tags} <= set(COREF_TAGS)
     with pytest.raises(ValueError, match="'Trg' is not one of this tagger's labels"):
         BiLstmCrfTagger().gold_tags([{"words": ["it"], "tags": ["Trg"]}])
+
+
+# --- the CRF's confidence: forward-backward and k-best Viterbi against brute force ----------------------
+def _random_crf(seed: int, n_tags: int, lengths: list[int]) -> tuple:
+    """A CRF with random (normal) scores and random emissions for sequences of the given lengths."""
+    from torchcrf import CRF
+
+    generator = torch.Generator().manual_seed(seed)
+    crf = CRF(n_tags, batch_first=True)
+    with torch.no_grad():
+        for parameter in crf.parameters():
+            parameter.copy_(torch.randn(parameter.shape, generator=generator))
+    emissions = torch.randn(len(lengths), max(lengths), n_tags, generator=generator)
+    mask = torch.arange(max(lengths))[None, :] < torch.tensor(lengths)[:, None]
+    return crf, emissions, mask
+
+
+def _all_paths(crf, emissions: torch.Tensor, length: int) -> list[tuple[tuple[int, ...], float]]:
+    """Every tag sequence of one sentence with its score, summed in float64 straight from the definition."""
+    start, end = crf.start_transitions.detach().double().numpy(), crf.end_transitions.detach().double().numpy()
+    trans, e = crf.transitions.detach().double().numpy(), emissions.double().numpy()
+    out = []
+    for path in itertools.product(range(crf.num_tags), repeat=length):
+        score = start[path[0]] + end[path[-1]] + sum(e[t, j] for t, j in enumerate(path))
+        out.append((path, score + sum(trans[a, b] for a, b in zip(path, path[1:]))))
+    return out
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2**20), n_tags=st.integers(1, 4), lengths=st.lists(st.integers(1, 4), min_size=1, max_size=3))
+def test_crf_marginals_and_kbest_match_brute_force(seed, n_tags, lengths) -> None:
+    crf, emissions, mask = _random_crf(seed, n_tags, lengths)
+    k = 6
+    log_z = crf_log_partition(crf, emissions, mask).detach()
+    marginals = crf_marginals(crf, emissions, mask).detach().numpy()
+    kbest = crf_kbest(crf, emissions, mask, k)
+    viterbi = crf.decode(emissions, mask=mask)
+    for b, length in enumerate(lengths):
+        paths = _all_paths(crf, emissions[b], length)
+        scores = np.array([score for _, score in paths])
+        brute_log_z = np.logaddexp.reduce(scores)
+        assert float(log_z[b]) == pytest.approx(brute_log_z, abs=1e-9)
+        expected = np.zeros((length, n_tags))
+        for (path, _), p in zip(paths, np.exp(scores - brute_log_z)):
+            expected[np.arange(length), list(path)] += p
+        np.testing.assert_allclose(marginals[b, :length], expected, atol=1e-9)
+        np.testing.assert_allclose(marginals[b, :length].sum(axis=1), 1.0, atol=1e-12)
+        assert not marginals[b, length:].any()  # padding
+        ranked = sorted(paths, key=lambda ps: -ps[1])[:k]
+        assert [p for p, _ in kbest[b]] == [list(p) for p, _ in ranked]  # the same top k, in order
+        np.testing.assert_allclose([lp for _, lp in kbest[b]], [s - brute_log_z for _, s in ranked], atol=1e-9)
+        assert kbest[b][0][0] == viterbi[b]  # the first is pytorch-crf's Viterbi path
+        # and its log-probability is pytorch-crf's log-likelihood of that path
+        tags = torch.zeros(1, emissions.size(1), dtype=torch.long)
+        tags[0, :length] = torch.tensor(kbest[b][0][0])
+        llh = crf(emissions[b : b + 1], tags, mask=mask[b : b + 1], reduction="sum").item()
+        assert kbest[b][0][1] == pytest.approx(llh, abs=1e-4)
+        assert crf_sequence_scores(crf, emissions[b : b + 1], mask[b : b + 1], tags).item() == pytest.approx(
+            ranked[0][1], abs=1e-9
+        )
+
+
+def test_crf_functions_refuse_an_empty_first_word() -> None:
+    crf, emissions, mask = _random_crf(0, 3, [2, 2])
+    mask[1, 0] = False
+    with pytest.raises(ValueError, match="first column"):
+        crf_marginals(crf, emissions, mask)
+    with pytest.raises(ValueError, match="k must be"):
+        crf_kbest(crf, emissions, torch.ones(2, 2, dtype=torch.bool), 0)
+
+
+# --- confidence of both taggers --------------------------------------------------------------------------------
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2**20), n_words=st.integers(0, 5), n_labels=st.integers(1, 4), k=st.integers(1, 8))
+def test_beam_kbest_matches_brute_force(seed, n_words, n_labels, k) -> None:
+    rng = np.random.default_rng(seed)
+    probabilities = rng.dirichlet(np.ones(n_labels), size=n_words)
+    if n_words:
+        probabilities[0] = np.eye(n_labels)[-1]  # a certain word: sequences without its label are impossible
+    found = beam_kbest(probabilities, k)
+    with np.errstate(divide="ignore"):
+        log_p = np.log(probabilities)
+    every = [(list(p), sum(log_p[i, j] for i, j in enumerate(p))) for p in itertools.product(range(n_labels), repeat=n_words)]
+    possible = sorted((ps for ps in every if np.isfinite(ps[1])), key=lambda ps: -ps[1])[:k]
+    assert [p for p, _ in found] == [p for p, _ in possible]
+    np.testing.assert_allclose([s for _, s in found], [s for _, s in possible], atol=1e-12)
+    assert found[0][0] == list(probabilities.argmax(axis=1))  # the first is the marginals' argmax
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 2**20), pieces=st.lists(st.integers(0, 4), min_size=1, max_size=6))
+def test_subword_marginals_agree_with_the_vote_when_the_pieces_agree(seed, pieces) -> None:
+    labels = list(TAGS[:5])
+    rng = np.random.default_rng(seed)
+    word_ids = [None] + [w for w, n in enumerate(pieces) for _ in range(n)] + [None]
+    logits = rng.normal(size=(len(word_ids), len(labels))) * 3
+    probabilities = np.exp(logits) / np.exp(logits).sum(axis=1, keepdims=True)
+    marginals = subword_marginals(probabilities, word_ids, len(pieces), labels.index("O"))
+    np.testing.assert_allclose(marginals.sum(axis=1), 1.0)
+    voted = vote_word_tags([labels[i] for i in logits.argmax(axis=1)], word_ids, len(pieces))
+    for w, n in enumerate(pieces):
+        rows = probabilities[[i for i, x in enumerate(word_ids) if x == w]]
+        np.testing.assert_allclose(marginals[w], rows.mean(axis=0) if n else np.eye(len(labels))[0])
+        if n == 0 or len(set(rows.argmax(axis=1))) == 1:  # no piece, one piece, or pieces that agree
+            assert labels[marginals[w].argmax()] == voted[w]
+
+
+def _check_confidence(tagger, sentences: list[list[str]], k: int = 4) -> tuple[list, list, list]:
+    predicted = tagger.predict(sentences)
+    marginals = tagger.predict_marginals(sentences)
+    kbest = tagger.predict_kbest(sentences, k)
+    for words, m, best in zip(sentences, marginals, kbest):
+        assert m.shape == (len(words), len(tagger.labels))
+        np.testing.assert_allclose(m.sum(axis=1), 1.0, atol=1e-9)
+        assert (m >= 0).all()
+        assert 1 <= len(best) <= k and all(len(tags) == len(words) for tags, _ in best)
+        log_ps = [lp for _, lp in best]
+        assert log_ps == sorted(log_ps, reverse=True) and log_ps[0] <= 1e-9
+        assert np.exp(log_ps).sum() <= 1 + 1e-9
+        assert len({tuple(tags) for tags, _ in best}) == len(best)
+    # all three at once, from one pass of the network: the same answers
+    together = tagger.predict_confidence(sentences, k)
+    assert [c.tags for c in together] == predicted and [c.kbest for c in together] == kbest
+    for c, m in zip(together, marginals):
+        np.testing.assert_array_equal(c.marginals, m)
+    return predicted, marginals, kbest
+
+
+def test_bilstm_crf_confidence(small_lstm, validation_rows) -> None:
+    sentences = [r["words"] for r in validation_rows[:40]] + [["stud"], ["Put", "it", "on", "500107"]]
+    predicted, marginals, kbest = _check_confidence(small_lstm, sentences)
+    assert [best[0][0] for best in kbest] == predicted  # the first sequence is predict's Viterbi path
+    # the Viterbi tag is almost always each word's most probable tag too
+    argmax = [t for m in marginals for t in np.array(small_lstm.labels)[m.argmax(axis=1)]]
+    assert np.mean(np.array(argmax) == np.array([t for p in predicted for t in p])) >= 0.99
+    assert small_lstm.predict_marginals([[]])[0].shape == (0, len(TAGS))
+    assert small_lstm.predict_kbest([[], ["stud"]], 3) == [[([], 0.0)], small_lstm.predict_kbest([["stud"]], 3)[0]]
+    with pytest.raises(ValueError, match="k must be"):
+        small_lstm.predict_kbest([["stud"]], 0)
+    with pytest.raises(TaggerNotTrainedError):
+        BiLstmCrfTagger().predict_marginals([["stud"]])
+
+
+def test_bert_confidence(small_bert, validation_rows) -> None:
+    sentences = [r["words"] for r in validation_rows[:30]] + [["stud"], ["Put", "it", "on", "500107"]]
+    predicted, marginals, kbest = _check_confidence(small_bert, sentences)
+    labels = np.array(small_bert.labels)
+    assert [best[0][0] for best in kbest] == [list(labels[m.argmax(axis=1)]) for m in marginals]
+    # a word of one sub-word token: its marginals' argmax is exactly the voted tag
+    pieces = [[len(small_bert.tokenizer.tokenize(w)) for w in words] for words in sentences]
+    single = [(m[i].argmax(), labels.tolist().index(p[i])) for words, m, p, n in zip(sentences, marginals, predicted, pieces)
+              for i in range(len(words)) if n[i] == 1]
+    assert len(single) > 500 and all(a == b for a, b in single)
+    # over all words the soft and the hard vote rarely differ (only where a word's pieces disagree)
+    agree = np.mean([a == b for m, p in zip(marginals, predicted) for a, b in zip(labels[m.argmax(axis=1)], p)])
+    assert agree >= 0.99  # 0.998 on the whole validation split with seed 0
+    assert small_bert.predict_kbest([[]], 2) == [[([], 0.0)]]
+
+
+# --- character features (Ma & Hovy 2016) ----------------------------------------------------------------
+def test_character_vocabulary() -> None:
+    assert character_vocabulary(["Stud", "4'x8'"]) == ["<pad>", "<unk>", "'", "4", "8", "d", "s", "t", "u", "x"]
+    assert CHAR_FEATURES == {"char_embedding_dim": 30, "char_filters": 30}
+    with pytest.raises(ValueError, match="both be 0"):
+        BiLstmCrfTagger(char_embedding_dim=30, char_filters=0)
+
+
+def test_characters_give_unseen_words_their_own_form(char_lstm, small_lstm) -> None:
+    unseen = ["sheetrock", "plasterboards", "studs"]
+    assert all(word_key(w) not in char_lstm.vocabulary for w in unseen)
+    assert "stud" in char_lstm.vocabulary
+    vectors = char_lstm.input_vectors([*unseen, "<unk>", "stud", "qzvj"])
+    assert vectors.shape == (6, 16 + 12)
+    # the word-embedding part is <unk> for all three; the character part tells them apart
+    assert np.array_equal(vectors[0, :16], vectors[1, :16]) and np.array_equal(vectors[0, :16], vectors[3, :16])
+    assert not np.allclose(vectors[0], vectors[1]) and not np.allclose(vectors[0], vectors[3])
+    # "studs" shares its form with the known "stud" more than with a random string
+    chars = vectors[:, 16:]
+    assert np.linalg.norm(chars[2] - chars[4]) < np.linalg.norm(chars[2] - chars[5])
+    sentences = [["put", "the", w, "on", "stud", "500107"] for w in unseen[:2]]
+    with_chars = char_lstm.predict_marginals(sentences)
+    assert not np.allclose(with_chars[0], with_chars[1])
+    # without characters two unknown words are the same <unk> to the network
+    plain = small_lstm.input_vectors(unseen[:2])
+    assert np.array_equal(plain[0], plain[1])
+    without = small_lstm.predict_marginals(sentences)
+    np.testing.assert_array_equal(without[0], without[1])
+
+
+def test_a_char_tagger_saves_and_loads(char_lstm, tmp_path, validation_rows) -> None:
+    saved = char_lstm.save(tmp_path / "chars")
+    meta = json.loads((saved / "tagger.json").read_text())
+    assert meta["settings"]["char_filters"] == 12 and meta["files"]["characters"] == "characters.json"
+    assert json.loads((saved / "characters.json").read_text()) == char_lstm.characters
+    loaded = load_tagger(saved, device="cpu")
+    assert loaded.settings() == char_lstm.settings() and loaded.characters == char_lstm.characters
+    sentences = [r["words"] for r in validation_rows[:30]] + [["Sheetrock", "4'x8'", "eight-footer", "Centre", "☃"]]
+    assert loaded.predict(sentences) == char_lstm.predict(sentences)
+    for a, b in zip(loaded.predict_marginals(sentences), char_lstm.predict_marginals(sentences)):
+        np.testing.assert_array_equal(a, b)
+    assert loaded.predict_kbest(sentences, 3) == char_lstm.predict_kbest(sentences, 3)
+
+
+def test_a_broken_character_vocabulary_is_refused(char_lstm, tmp_path) -> None:
+    saved = char_lstm.save(tmp_path / "chars")
+    characters = saved / "characters.json"
+    good = characters.read_text()
+    characters.write_text("[not json")
+    with pytest.raises(TaggerLoadError, match="characters.json is not valid JSON"):
+        load_tagger(saved)
+    characters.write_text(json.dumps(["a", "b"]))
+    with pytest.raises(TaggerLoadError, match="characters.json is not a character vocabulary"):
+        load_tagger(saved)
+    characters.write_text(json.dumps(json.loads(good)[:-1]))
+    with pytest.raises(TaggerLoadError, match=r"characters.json lists \d+ characters but weights.safetensors"):
+        load_tagger(saved)
+    characters.unlink()
+    with pytest.raises(TaggerLoadError, match="use character features but characters.json is missing"):
+        load_tagger(saved)
+
+
+# --- devices --------------------------------------------------------------------------------------------
+def test_devices(no_gpu, char_lstm, tmp_path, train_rows) -> None:
+    assert resolve_device("auto") == "cpu" and resolve_device("cpu") == "cpu"
+    for asked in ("cuda", "cuda:1", "CUDA"):
+        with pytest.raises(ValueError, match="no CUDA GPU"):
+            resolve_device(asked)
+    with pytest.raises(ValueError, match="unknown device 'gpu'"):
+        resolve_device("gpu")
+    words = [["put", "panel", "500310", "on", "stud", "500107"]]
+    assert char_lstm.to("cpu") is char_lstm and char_lstm.device == "cpu"
+    assert char_lstm.predict(words)[0][2] in TAGS
+    saved = char_lstm.save(tmp_path / "chars")
+    with pytest.raises(ValueError, match="no CUDA GPU"):
+        load_tagger(saved, device="cuda")
+    with pytest.raises(ValueError, match="no CUDA GPU"):
+        char_lstm.to("cuda")
+    with pytest.raises(ValueError, match="no CUDA GPU"):
+        BiLstmCrfTagger(embedding_dim=4, hidden_size=4, epochs=1).fit(train_rows[:4], progress=False, device="cuda")
+    assert char_lstm.device == "cpu"
+    with pytest.raises(ValueError, match="no CUDA GPU"):
+        _run(["evaluate", "--split", "validation", "--device", "cuda"])
+    with pytest.raises(ValueError, match="no CUDA GPU"):
+        _run(["train", "bilstm-crf", "--out", str(tmp_path / "x"), "--device", "cuda"])
+
+
+@pytest.mark.skipif(not torch.cuda.is_available(), reason="needs a CUDA GPU")
+def test_on_a_gpu(train_rows, tmp_path) -> None:
+    tagger = BiLstmCrfTagger(embedding_dim=16, hidden_size=16, char_embedding_dim=8, char_filters=12, epochs=2)
+    tagger.fit(train_rows[:60], progress=False, device="cuda")
+    assert tagger.device == "cuda" and next(tagger.network.parameters()).is_cuda
+    sentences = [r["words"] for r in train_rows[:20]]
+    on_cpu = load_tagger(tagger.save(tmp_path / "gpu"))  # loads onto the CPU
+    assert on_cpu.device == "cpu" and on_cpu.predict(sentences) == tagger.predict(sentences)
+    for a, b in zip(on_cpu.predict_marginals(sentences), tagger.predict_marginals(sentences)):
+        np.testing.assert_allclose(a, b, atol=1e-4)
 
 
 # --- BERT -----------------------------------------------------------------------------------------
@@ -452,6 +736,21 @@ def test_train_command_and_its_errors(tmp_path, capsys) -> None:
         _run(["train", "bilstm-crf", "--out", str(out_dir), "--train-size", "0"])
     with pytest.raises(ValueError, match="--encoder"):
         _run(["train", "bilstm-crf", "--out", str(out_dir), "--encoder", "bert-base-uncased"])
+    for bad in ("1", "1.5", "-0.1", "nan"):
+        with pytest.raises(ValueError, match="--word-dropout must be at least 0 and below 1"):
+            _run(["train", "bilstm-crf", "--out", str(out_dir), "--word-dropout", bad])
+    for option in (["--char-features"], ["--word-dropout", "0.1"]):
+        with pytest.raises(ValueError, match="apply to the bilstm-crf tagger only"):
+            _run(["train", "bert", "--out", str(out_dir), *option])
+    with pytest.raises(SystemExit):
+        _run(["train", "bilstm-crf", "--out", str(out_dir), "--device", "tpu"])
+    char_dir = tmp_path / "chars"
+    assert _run(["train", "bilstm-crf", "--out", str(char_dir), "--train-size", "20", "--epochs", "1",
+                 "--char-features", "--word-dropout", "0.2", "--device", "cpu"]) == 0
+    assert "trained on cpu" in capsys.readouterr().out
+    saved = load_tagger(char_dir)
+    assert saved.uses_characters and saved.word_dropout == 0.2
+    assert {k: saved.settings()[k] for k in CHAR_FEATURES} == CHAR_FEATURES
     (tmp_path / "broken").mkdir()
     with pytest.raises(TaggerLoadError, match="tagger.json is missing"):
         _run(["evaluate", "--tagger", str(tmp_path / "broken"), "--split", "test"])

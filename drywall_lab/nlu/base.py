@@ -14,6 +14,12 @@ swap one for the other:
 [['O', 'O', 'O', 'ID_wall']]
 >>> tagger.save("my_tagger"); load_tagger("my_tagger")                 # doctest: +SKIP
 
+Beyond the single best tags, both give their confidence (issue 12): ``predict_marginals``
+(per word, the probability of each label) and ``predict_kbest`` (the k most probable tag
+sequences with their log-probabilities). ``to(device)`` / ``fit(..., device=...)`` /
+``load_tagger(directory, device=...)`` run a tagger on ``"cpu"``, ``"cuda"`` or ``"auto"``
+(``resolve_device``).
+
 A saved tagger is a directory with ``tagger.json`` (kind, labels, settings, versions),
 ``history.csv`` (one row per training epoch) and the kind's own weight files.
 """
@@ -23,8 +29,10 @@ import importlib
 import json
 import platform
 import random
+import re
 import time
 from abc import ABC, abstractmethod
+from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path
 from typing import Any, ClassVar, Mapping, Sequence
@@ -52,6 +60,24 @@ KINDS: dict[str, tuple[str, str]] = {
 }
 
 Sentences = Sequence[Sequence[str]]
+#: One instruction's k best tag sequences: (tags, log-probability), most probable first.
+KBest = list[tuple[list[str], float]]
+#: What ``device`` arguments accept: ``"auto"`` (cuda when available, else cpu), ``"cpu"``, ``"cuda"``, ``"cuda:N"``.
+DEVICE_CHOICES = ("auto", "cpu", "cuda")
+
+
+@dataclass(frozen=True)
+class TagConfidence:
+    """One instruction's tags with the tagger's confidence in them (``Tagger.predict_confidence``).
+
+    ``tags``: what ``predict`` gives; ``marginals``: (n_words, n_labels), each word's
+    probability of each label (columns in the tagger's ``labels`` order); ``kbest``: the
+    k most probable tag sequences with their log-probabilities, best first.
+    """
+
+    tags: list[str]
+    marginals: np.ndarray
+    kbest: KBest
 
 
 class TaggerLoadError(ValueError):
@@ -69,6 +95,42 @@ def seed_everything(seed: int) -> None:
     random.seed(seed)
     np.random.seed(seed)
     torch.manual_seed(seed)
+
+
+def resolve_device(device: Any = "auto") -> str:
+    """The torch device name to run on: ``"auto"`` is ``"cuda"`` when ``torch.cuda.is_available()``, else ``"cpu"``.
+
+    ``"cpu"``, ``"cuda"``, ``"cuda:N"`` (or a ``torch.device``) are checked: asking for cuda on a
+    machine without one is a ValueError that says so, instead of torch's error deep in training.
+
+    >>> resolve_device("cpu")
+    'cpu'
+    """
+    import torch
+
+    name = str(device).strip().lower() if device is not None else "auto"
+    if name == "auto":
+        return "cuda" if torch.cuda.is_available() else "cpu"
+    if name == "cpu":
+        return "cpu"
+    if re.fullmatch(r"cuda(:\d+)?", name):
+        if not torch.cuda.is_available():
+            raise ValueError(
+                f"device {name!r} was asked for, but torch sees no CUDA GPU on this machine "
+                f"(torch {torch.__version__}); use device 'cpu' or 'auto'"
+            )
+        index = int(name.split(":")[1]) if ":" in name else 0
+        if index >= torch.cuda.device_count():
+            raise ValueError(f"device {name!r} was asked for, but this machine has {torch.cuda.device_count()} CUDA GPU(s)")
+        return name
+    raise ValueError(f"unknown device {device!r}; expected one of {', '.join(DEVICE_CHOICES)} (or 'cuda:N')")
+
+
+def check_k(k: Any) -> int:
+    """``k`` for ``predict_kbest``: a whole number of at least 1."""
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 1:
+        raise ValueError(f"k must be a whole number of at least 1, got {k!r}")
+    return int(k)
 
 
 def package_versions(*names: str) -> dict[str, str]:
@@ -130,6 +192,7 @@ class Tagger(ABC):
         self.tag_field = tag_field
         self.history: pd.DataFrame = empty_history()
         self.training_info: dict[str, Any] = {}
+        self._device = "cpu"
 
     # -- what each kind implements ------------------------------------------------------
     @abstractmethod
@@ -141,12 +204,45 @@ class Tagger(ABC):
         epochs: int | None = None,
         progress: bool = True,
         seed: int = DEFAULT_SEED,
+        device: str | None = None,
     ) -> pd.DataFrame:
-        """Train from scratch on ``train_rows``; return (and keep as ``history``) one row per epoch."""
+        """Train from scratch on ``train_rows``; return (and keep as ``history``) one row per epoch.
+
+        ``device`` (``"auto"``, ``"cpu"``, ``"cuda"``): where to train, and where the trained
+        tagger then predicts; ``None`` keeps the tagger's device (``"cpu"`` unless ``to`` said otherwise).
+        """
 
     @abstractmethod
     def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
         """One tag per word for each word list; an empty word list gives an empty tag list."""
+
+    @abstractmethod
+    def predict_marginals(self, sentences: Sentences, batch_size: int = 64) -> list[np.ndarray]:
+        """Per word list, an array of shape (n_words, n_labels): row i is word i's probability of each label
+        (columns in the order of ``labels``), rows summing to 1. An empty word list gives shape (0, n_labels)."""
+
+    @abstractmethod
+    def predict_kbest(self, sentences: Sentences, k: int, batch_size: int = 64) -> list[KBest]:
+        """Per word list, up to ``k`` tag sequences with their natural-log probabilities, most probable first
+        (fewer when fewer sequences are possible). An empty word list has one sequence, ``([], 0.0)``."""
+
+    def predict_confidence(self, sentences: Sentences, k: int = 5, batch_size: int = 64) -> list[TagConfidence]:
+        """``predict``, ``predict_marginals`` and ``predict_kbest`` together, one ``TagConfidence`` per word list.
+
+        The kinds compute all three from one pass of the network (this default calls the three).
+        """
+        k = check_k(k)
+        return [
+            TagConfidence(tags, marginals, kbest)
+            for tags, marginals, kbest in zip(
+                self.predict(sentences, batch_size), self.predict_marginals(sentences, batch_size),
+                self.predict_kbest(sentences, k, batch_size),
+            )
+        ]
+
+    @abstractmethod
+    def _move(self, device: str) -> None:
+        """Move the trained network (if any) to ``device`` (already resolved)."""
 
     @abstractmethod
     def n_parameters(self) -> int:
@@ -169,6 +265,19 @@ class Tagger(ABC):
     @abstractmethod
     def _load_weights(cls, directory: Path, meta: Mapping[str, Any]) -> "Tagger":
         """Build a trained tagger from ``directory`` whose ``tagger.json`` says ``meta``."""
+
+    # -- device ------------------------------------------------------------------------------
+    @property
+    def device(self) -> str:
+        """The torch device this tagger trains and predicts on (``"cpu"`` unless ``to`` or ``fit`` said otherwise)."""
+        return self._device
+
+    def to(self, device: str = "auto") -> "Tagger":
+        """Run on ``device`` (``"auto"``, ``"cpu"``, ``"cuda"``, ``"cuda:N"``; see ``resolve_device``); return self."""
+        resolved = resolve_device(device)
+        self._move(resolved)
+        self._device = resolved
+        return self
 
     # -- shared by the kinds' ``fit`` ---------------------------------------------------
     def _fit_input(
@@ -311,14 +420,19 @@ def _read_meta(directory: Path) -> dict[str, Any]:
     return meta
 
 
-def load_tagger(directory: str | Path) -> Tagger:
+def load_tagger(directory: str | Path, device: str = "cpu") -> Tagger:
     """Load a tagger written by ``Tagger.save``; its ``tagger.json`` says which class.
+
+    The weights are always read onto the CPU first (a tagger trained on a GPU loads on a
+    machine without one); then the tagger is moved to ``device`` (``"cpu"`` by default,
+    ``"auto"`` or ``"cuda"``: see ``resolve_device``, whose ValueError says when cuda is missing).
 
     Raises ``TaggerLoadError`` (a ValueError) with a message that says what is wrong: the
     directory is missing, ``tagger.json`` is missing or corrupt, the kind is unknown, or a
     weight file is missing or does not fit the settings.
     """
     directory = Path(directory)
+    device = resolve_device(device)
     meta = _read_meta(directory)
     kind = meta["kind"]
     if kind not in KINDS:
@@ -341,7 +455,7 @@ def load_tagger(directory: str | Path) -> Tagger:
         except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
             raise TaggerLoadError(f"{directory}: {HISTORY_CSV} is corrupt ({e})") from None
     tagger.training_info = dict(meta.get("training", {}))
-    return tagger
+    return tagger.to(device) if device != "cpu" else tagger
 
 
 def labels_for(coref: bool) -> tuple[tuple[str, ...], str]:

@@ -27,6 +27,18 @@ tokens that disagree) the first sub-word's tag decides, the usual BERT conventio
 word the tokenizer turns into no token at all (a zero-width space) is tagged ``O``.
 See ``vote_word_tags``.
 
+**Confidence** (issue 12). ``predict_marginals``: each sub-word token's label
+probabilities are the softmax of its logits; a word's probabilities are the *mean* of
+its sub-word tokens' probability vectors (``subword_marginals``, a "soft" version of the
+vote). Whenever the word's tokens agree on their most probable label (a word of one
+token, which most are, or several that agree) the mean's most probable label is that
+label too, so it is the voted tag; when they disagree, the soft mean and the hard vote
+can differ. A word with no token is ``O`` with probability 1, as the vote says.
+``predict_kbest`` treats the words as independent with those probabilities: the k
+sequences with the largest sum of log word probabilities, found by a beam of width k
+over the words (``beam_kbest``; exact for independent words), the first being the
+argmax of each word's marginals.
+
 **Length.** An instruction longer than ``max_length`` tokens (with ``[CLS]`` and
 ``[SEP]``) is cut, between words, into consecutive pieces that fit; each piece is
 tagged on its own, in training and in prediction, so no word is ever dropped. The
@@ -50,10 +62,14 @@ from tqdm.auto import tqdm
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.nlu.base import (
     DEFAULT_SEED,
+    KBest,
     Sentences,
+    TagConfidence,
     Tagger,
     TaggerLoadError,
+    check_k,
     check_sentences,
+    resolve_device,
     seed_everything,
 )
 
@@ -180,6 +196,56 @@ def vote_word_tags(
     return out
 
 
+def subword_marginals(
+    token_probabilities: np.ndarray, word_ids: Sequence[int | None], n_words: int, no_token_label: int = 0
+) -> np.ndarray:
+    """Word label probabilities (n_words, n_labels) from sub-word token probabilities (n_tokens, n_labels).
+
+    A word's row is the mean of its tokens' rows (``word_ids`` as in ``vote_word_tags``;
+    ``None`` tokens are skipped); a word with no token is certain of ``no_token_label``
+    (the index of ``"O"``). When a word's tokens all have the same most probable label,
+    so has the mean: the argmax then equals ``vote_word_tags``'s tag.
+
+    >>> subword_marginals(np.array([[.5, .5], [.9, .1], [.7, .3]]), [None, 0, 0], n_words=2).round(2).tolist()
+    [[0.8, 0.2], [1.0, 0.0]]
+    """
+    token_probabilities = np.asarray(token_probabilities, dtype=np.float64)
+    if token_probabilities.ndim != 2 or len(token_probabilities) != len(word_ids):
+        raise ValueError(f"{len(token_probabilities)} token rows but {len(word_ids)} word ids")
+    out = np.zeros((n_words, token_probabilities.shape[1]))
+    counts = np.zeros(n_words)
+    for row, word in zip(token_probabilities, word_ids):
+        if word is not None:
+            out[int(word)] += row
+            counts[int(word)] += 1
+    out[counts == 0, no_token_label] = 1.0
+    counts[counts == 0] = 1.0
+    return out / counts[:, None]
+
+
+def beam_kbest(word_probabilities: np.ndarray, k: int) -> list[tuple[list[int], float]]:
+    """The k label sequences with the largest sum of log word probabilities, best first, with that sum.
+
+    A beam of width k over the words, keeping the k best prefixes; for independent words
+    this is exact (a prefix outside the k best cannot start one of the k best sequences).
+    Labels of probability 0 are never chosen, so fewer than k sequences can come back. An
+    empty sentence has one sequence, ``([], 0.0)``.
+
+    >>> [(p, round(s, 3)) for p, s in beam_kbest(np.array([[.6, .4], [.9, .1]]), 3)]
+    [([0, 0], -0.616), ([1, 0], -1.022), ([0, 1], -2.813)]
+    """
+    k = check_k(k)
+    with np.errstate(divide="ignore"):
+        log_p = np.log(np.asarray(word_probabilities, dtype=np.float64))
+    beam: list[tuple[float, list[int]]] = [(0.0, [])]
+    for row in log_p:
+        labels = [j for j in np.argsort(-row, kind="stable")[:k] if np.isfinite(row[j])]
+        candidates = [(score + row[j], path + [int(j)]) for score, path in beam for j in labels]
+        candidates.sort(key=lambda c: -c[0])  # stable: ties keep the earlier prefix, then the more probable label
+        beam = candidates[:k]
+    return [(path, float(score)) for score, path in beam]
+
+
 def split_into_pieces(subword_counts: Sequence[int], max_tokens: int) -> list[tuple[int, int]]:
     """Cut a word sequence, between words, into (start, end) pieces of at most ``max_tokens`` sub-words.
 
@@ -267,6 +333,10 @@ class BertTagger(Tagger):
     def _version_packages(self) -> tuple[str, ...]:
         return ("torch", "transformers")
 
+    def _move(self, device: str) -> None:
+        if self.model is not None:
+            self.model.to(device)
+
     # -- the encoder ------------------------------------------------------------------------
     def _load_pretrained(self, source: str, local: bool, *, new_head: bool = True) -> None:
         """Tokenizer and model from ``source``; ``new_head``: a fresh classifier for ``labels``."""
@@ -316,7 +386,7 @@ class BertTagger(Tagger):
         from transformers import DataCollatorForTokenClassification
 
         collator = DataCollatorForTokenClassification(self.tokenizer, return_tensors="pt")
-        return collator([item["features"] for item in items])
+        return {k: v.to(self.device) for k, v in collator([item["features"] for item in items]).items()}
 
     def _word_tags(self, logits: torch.Tensor, items: Sequence[Mapping[str, Any]]) -> list[list[str]]:
         token_ids = logits.argmax(-1).tolist()
@@ -335,6 +405,7 @@ class BertTagger(Tagger):
         epochs: int | None = None,
         progress: bool = True,
         seed: int = DEFAULT_SEED,
+        device: str | None = None,
     ) -> pd.DataFrame:
         """Load the pre-trained encoder afresh and fine-tune it on ``train_rows``.
 
@@ -342,15 +413,19 @@ class BertTagger(Tagger):
         training word accuracy as the paper's Fig. 13(b) plots it (word tags voted from
         each batch's token predictions, dropout on), validation Acc_word / Acc_inst when
         ``validation_rows`` are given, and seconds.
+        ``device``: ``"auto"``, ``"cpu"`` or ``"cuda"`` (``None``: the tagger's, cpu unless ``to`` said so).
         """
         from transformers import get_linear_schedule_with_warmup
 
         train_rows, gold, validation_rows, validation_gold, epochs = self._fit_input(
             train_rows, validation_rows, epochs, self.epochs
         )
+        if device is not None:
+            self._device = resolve_device(device)
 
         seed_everything(seed)
         self._load_pretrained(*resolve_encoder(self.encoder))
+        self.model.to(self.device)
         tag_index = {t: i for i, t in enumerate(self.labels)}
         items, item_gold = [], []
         for row, tags in zip(train_rows, gold):
@@ -396,24 +471,71 @@ class BertTagger(Tagger):
                                 seed=seed, started=started)
 
     # -- prediction -------------------------------------------------------------------------------
-    def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
-        """Tag each word list: token classes by the fine-tuned model, word tags by majority vote."""
-        sentences = check_sentences(sentences)
-        self._check_trained("predict")
+    def _token_logits(self, sentences: list[list[str]], batch_size: int) -> Iterator[tuple[list[int], list[Mapping[str, Any]], torch.Tensor]]:
+        """(owners, items, logits) per batch of pieces: the sentence each piece belongs to, its encoding, its logits."""
         items, owners = [], []
         for i, words in enumerate(sentences):
             for start, end in self._pieces(words) if words else []:
                 items.append(self._encode(words[start:end]))
                 owners.append(i)
-        out: list[list[str]] = [[] for _ in sentences]
         self.model.eval()
         step = max(1, batch_size)
+        for start in range(0, len(items), step):
+            batch_items = items[start : start + step]
+            yield owners[start : start + step], batch_items, self.model(**self._collate(batch_items)).logits
+
+    def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
+        """Tag each word list: token classes by the fine-tuned model, word tags by majority vote."""
+        sentences = check_sentences(sentences)
+        self._check_trained("predict")
+        out: list[list[str]] = [[] for _ in sentences]
         with torch.inference_mode():
-            for start in range(0, len(items), step):
-                batch_items = items[start : start + step]
-                logits = self.model(**self._collate(batch_items)).logits
-                for owner, tags in zip(owners[start : start + step], self._word_tags(logits, batch_items)):
+            for owners, batch_items, logits in self._token_logits(sentences, batch_size):
+                for owner, tags in zip(owners, self._word_tags(logits, batch_items)):
                     out[owner].extend(tags)
+        return out
+
+    def _tags_and_marginals(
+        self, sentences: Sentences, batch_size: int, *, with_tags: bool
+    ) -> tuple[list[list[str]], list[np.ndarray]]:
+        """Voted word tags (when ``with_tags``) and word marginals of each word list, from one pass of the model."""
+        sentences = check_sentences(sentences)
+        self._check_trained("predict_marginals")
+        tags: list[list[str]] = [[] for _ in sentences]
+        parts: list[list[np.ndarray]] = [[] for _ in sentences]
+        no_token = self.labels.index(NO_TOKEN_TAG) if NO_TOKEN_TAG in self.labels else 0
+        with torch.inference_mode():
+            for owners, batch_items, logits in self._token_logits(sentences, batch_size):
+                if with_tags:
+                    for owner, voted in zip(owners, self._word_tags(logits, batch_items)):
+                        tags[owner].extend(voted)
+                probabilities = torch.softmax(logits.double(), dim=-1).cpu().numpy()
+                for owner, item, rows in zip(owners, batch_items, probabilities):
+                    word_ids = item["word_ids"]
+                    parts[owner].append(subword_marginals(rows[: len(word_ids)], word_ids, item["n_words"], no_token))
+        return tags, [np.concatenate(p) if p else np.zeros((0, len(self.labels))) for p in parts]
+
+    def predict_marginals(self, sentences: Sentences, batch_size: int = 64) -> list[np.ndarray]:
+        """Per word list, P(word i has label j) as an (n_words, n_labels) array: the mean of the word's
+        sub-word softmax vectors (``subword_marginals``)."""
+        return self._tags_and_marginals(sentences, batch_size, with_tags=False)[1]
+
+    def predict_confidence(self, sentences: Sentences, k: int = 5, batch_size: int = 64) -> list[TagConfidence]:
+        """Voted tags, word marginals and the k best sequences, from one pass of the model."""
+        k = check_k(k)
+        tags, marginals = self._tags_and_marginals(sentences, batch_size, with_tags=True)
+        return [
+            TagConfidence(t, m, [([self.labels[j] for j in path], lp) for path, lp in beam_kbest(m, k)])
+            for t, m in zip(tags, marginals)
+        ]
+
+    def predict_kbest(self, sentences: Sentences, k: int, batch_size: int = 64) -> list[KBest]:
+        """Per word list, the k most probable tag sequences under the word marginals (``beam_kbest``), best first,
+        with their log-probabilities (the sum of the words' log marginals). An empty word list gives ``[([], 0.0)]``."""
+        k = check_k(k)
+        out = []
+        for marginals in self.predict_marginals(sentences, batch_size=batch_size):
+            out.append([([self.labels[j] for j in path], log_p) for path, log_p in beam_kbest(marginals, k)])
         return out
 
     # -- saving and loading ---------------------------------------------------------------------

@@ -16,6 +16,22 @@ training each word is replaced by its fallback token with probability
 ``max(word_dropout, unk_alpha / (unk_alpha + count))`` (count = how often the training
 data has it; Kiperwasser & Goldberg 2016), so rare words and a share of all words
 teach the network what to do with a word it does not know, from context alone.
+
+**Characters** (off by default, so the paper's network is unchanged; ``CHAR_FEATURES``
+turns them on). With ``char_embedding_dim`` and ``char_filters`` above 0 each word also
+gets a vector from its characters, the character CNN of Ma & Hovy (2016, section 2.1 and
+Table 1: character embedding 30, 30 filters of width 3, max-pooling over the word):
+the word as typed, lower-cased, is looked up character by character (characters the
+training data never showed become ``<unk>``; at most ``MAX_WORD_CHARS`` per word),
+convolved and max-pooled, and the result is concatenated to the word embedding. So a
+word the vocabulary lacks ("sheetrock", "4'x8'", "eight-footer") is not only ``<unk>``:
+it still carries its form. A word replaced by its fallback token by word dropout keeps
+its characters, which is what teaches the network to read them.
+
+**Confidence** (issue 12). ``predict_marginals`` runs the forward-backward algorithm over
+the CRF's emission, start, end and transition scores (``crf_marginals``);
+``predict_kbest`` is an exact k-best (list) Viterbi (``crf_kbest``), each sequence's
+log-probability being its score minus log Z. Both work in log space (``torch.logsumexp``).
 """
 from __future__ import annotations
 
@@ -24,7 +40,7 @@ import re
 import time
 from collections import Counter
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any, Iterable, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -37,18 +53,31 @@ from tqdm.auto import tqdm
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.nlu.base import (
     DEFAULT_SEED,
+    KBest,
     Sentences,
+    TagConfidence,
     Tagger,
     TaggerLoadError,
+    check_k,
     check_sentences,
+    resolve_device,
     seed_everything,
 )
 
 WEIGHTS_FILE = "weights.safetensors"
 VOCABULARY_FILE = "vocabulary.json"
+CHAR_VOCABULARY_FILE = "characters.json"
 PAD, UNK, ID, NUM, ORDINAL = "<pad>", "<unk>", "<id>", "<num>", "<ordinal>"
 #: Tokens every vocabulary starts with (``<pad>`` is id 0).
 SPECIAL_TOKENS = (PAD, UNK, ID, NUM, ORDINAL)
+#: The character vocabulary starts with these (``<pad>`` is id 0, ``<unk>`` id 1); then single characters.
+CHAR_SPECIAL_TOKENS = (PAD, UNK)
+#: Characters read per word (a longer word is read from its first ``MAX_WORD_CHARS``).
+MAX_WORD_CHARS = 24
+#: The width of the character CNN's filters (Ma & Hovy 2016, Table 1).
+CHAR_KERNEL_SIZE = 3
+#: The character settings of Ma & Hovy (2016, Table 1), as ``train --char-features`` uses them.
+CHAR_FEATURES = {"char_embedding_dim": 30, "char_filters": 30}
 
 _ID = re.compile(r"\d{5,7}")
 _NUMBER = re.compile(r"\d+(?:[.,]\d+)?")
@@ -82,17 +111,62 @@ def fallback_token(key: str) -> str:
     return UNK
 
 
+def word_characters(word: str) -> str:
+    """The characters the character CNN reads of a word: the word as typed, lower-cased, cut at ``MAX_WORD_CHARS``.
+
+    >>> word_characters("Sheetrock"), word_characters("4'X8'")
+    ('sheetrock', "4'x8'")
+    """
+    return word.lower()[:MAX_WORD_CHARS]
+
+
+def character_vocabulary(words: Iterable[str]) -> list[str]:
+    """``<pad>``, ``<unk>``, then every character of ``words`` (as ``word_characters`` reads them), sorted.
+
+    >>> character_vocabulary(["Stud", "4x8"])
+    ['<pad>', '<unk>', '4', '8', 'd', 's', 't', 'u', 'x']
+    """
+    return [*CHAR_SPECIAL_TOKENS, *sorted({c for w in words for c in word_characters(w)})]
+
+
+class CharCnn(nn.Module):
+    """Ma & Hovy's (2016) character CNN: char embedding -> dropout -> convolution (width 3) -> max over the word.
+
+    Input: character ids (words, chars), 0 = padding; output (words, ``n_filters``). A word
+    with no characters (an empty string, or a padding position) gives zeros. Padding
+    characters embed to zeros, so a word's vector does not depend on how long the other
+    words of its batch are.
+    """
+
+    def __init__(self, n_chars: int, char_embedding_dim: int, n_filters: int, dropout: float) -> None:
+        super().__init__()
+        self.embedding = nn.Embedding(n_chars, char_embedding_dim, padding_idx=0)
+        self.dropout = nn.Dropout(dropout)
+        self.conv = nn.Conv1d(char_embedding_dim, n_filters, CHAR_KERNEL_SIZE, padding=CHAR_KERNEL_SIZE // 2)
+
+    def forward(self, char_ids: torch.Tensor) -> torch.Tensor:
+        present = char_ids != 0  # (words, chars)
+        x = self.dropout(self.embedding(char_ids)).transpose(1, 2)  # (words, dim, chars)
+        h = self.conv(x).masked_fill(~present[:, None, :], float("-inf"))
+        pooled = h.max(dim=2).values
+        return torch.where(present.any(dim=1, keepdim=True), pooled, torch.zeros_like(pooled))
+
+
 class BiLstmCrfNetwork(nn.Module):
-    """Embedding -> dropout -> BiLSTM (stacked) -> dropout -> linear tag scores -> CRF."""
+    """[Embedding ; char CNN] -> dropout -> BiLSTM (stacked) -> dropout -> linear tag scores -> CRF.
+
+    Without characters (``n_chars == 0``) this is the paper's network, parameter for parameter.
+    """
 
     def __init__(
-        self, vocabulary_size: int, n_tags: int, embedding_dim: int, hidden_size: int, num_layers: int, dropout: float
+        self, vocabulary_size: int, n_tags: int, embedding_dim: int, hidden_size: int, num_layers: int, dropout: float,
+        n_chars: int = 0, char_embedding_dim: int = 0, char_filters: int = 0,
     ) -> None:
         super().__init__()
         self.embedding = nn.Embedding(vocabulary_size, embedding_dim, padding_idx=0)
         self.dropout = nn.Dropout(dropout)
         self.lstm = nn.LSTM(
-            embedding_dim,
+            embedding_dim + char_filters,
             hidden_size,
             num_layers=num_layers,
             bidirectional=True,
@@ -101,14 +175,135 @@ class BiLstmCrfNetwork(nn.Module):
         )
         self.tag_scores = nn.Linear(2 * hidden_size, n_tags)
         self.crf = CRF(n_tags, batch_first=True)
+        # Created last, so that without characters the other layers draw the same random numbers as before.
+        self.char_cnn = CharCnn(n_chars, char_embedding_dim, char_filters, dropout) if char_filters > 0 else None
 
-    def emissions(self, word_ids: torch.Tensor, lengths: torch.Tensor) -> torch.Tensor:
+    def word_vectors(self, word_ids: torch.Tensor, char_ids: torch.Tensor | None = None) -> torch.Tensor:
+        """What the BiLSTM reads for each word, before dropout: (batch, time, embedding [+ char filters])."""
+        x = self.embedding(word_ids)
+        if self.char_cnn is None:
+            return x
+        if char_ids is None:
+            raise ValueError("this network reads characters: pass char_ids")
+        batch, time = word_ids.shape
+        chars = self.char_cnn(char_ids.reshape(batch * time, -1)).reshape(batch, time, -1)
+        return torch.cat([x, chars], dim=-1)
+
+    def emissions(
+        self, word_ids: torch.Tensor, lengths: torch.Tensor, char_ids: torch.Tensor | None = None
+    ) -> torch.Tensor:
         """Per-word tag scores, shape (batch, time, tags); padding positions are ignored by the LSTM."""
-        x = self.dropout(self.embedding(word_ids))
+        x = self.dropout(self.word_vectors(word_ids, char_ids))
         packed = pack_padded_sequence(x, lengths.cpu(), batch_first=True, enforce_sorted=False)
         out, _ = self.lstm(packed)
         out, _ = pad_packed_sequence(out, batch_first=True, total_length=word_ids.size(1))
         return self.tag_scores(self.dropout(out))
+
+
+# -- the CRF's probabilities (forward-backward, k-best Viterbi) -------------------------------------
+def _crf_parts(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor):
+    """float64 copies of the scores (batch-first emissions) and a boolean mask whose first column is true."""
+    if emissions.dim() != 3 or emissions.shape[:2] != mask.shape or emissions.size(2) != crf.num_tags:
+        raise ValueError(f"emissions must be (batch, time, {crf.num_tags}) and mask (batch, time)")
+    mask = mask.bool()
+    if emissions.size(1) == 0 or not bool(mask[:, 0].all()):
+        raise ValueError("every sequence needs at least one word (the mask's first column must be true)")
+    if bool((mask[:, 1:] & ~mask[:, :-1]).any()):
+        raise ValueError("the mask must be true on a prefix of each row (padding at the end only)")
+    return (
+        emissions.double(), mask, crf.start_transitions.double(), crf.end_transitions.double(),
+        crf.transitions.double(),
+    )
+
+
+def _forward_backward(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor):
+    """(alpha, beta, log Z): log-space forward and backward scores, (batch, time, tags) each, and (batch,)."""
+    e, mask, start, end, trans = _crf_parts(crf, emissions, mask)
+    batch, time, _ = e.shape
+    lengths = mask.sum(dim=1)
+    alpha = [start + e[:, 0]]
+    for t in range(1, time):
+        step = torch.logsumexp(alpha[-1][:, :, None] + trans[None] + e[:, t, None, :], dim=1)
+        alpha.append(torch.where(mask[:, t, None], step, alpha[-1]))
+    beta = [end.expand(batch, -1)]
+    for t in range(time - 2, -1, -1):
+        step = torch.logsumexp(trans[None] + (e[:, t + 1] + beta[0])[:, None, :], dim=2)
+        beta.insert(0, torch.where(mask[:, t + 1, None], step, end.expand(batch, -1)))
+    alpha_t, beta_t = torch.stack(alpha, dim=1), torch.stack(beta, dim=1)
+    last = alpha_t[torch.arange(batch), lengths - 1]
+    return alpha_t, beta_t, torch.logsumexp(last + end, dim=1)
+
+
+def crf_log_partition(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
+    """log Z for each sequence (batch-first emissions), float64: the log-sum-exp of all tag sequences' scores."""
+    return _forward_backward(crf, emissions, mask)[2]
+
+
+def crf_marginals(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
+    """P(tag of word t = j | words), float64 (batch, time, tags), by forward-backward in log space.
+
+    ``exp(alpha_t(j) + beta_t(j) - log Z)``, where alpha sums the scores of all prefixes
+    ending in j at t (start, emissions, transitions) and beta those of all suffixes after
+    it (transitions, emissions, end). Padding positions (mask false) are zeros.
+    """
+    alpha, beta, log_z = _forward_backward(crf, emissions, mask)
+    marginals = torch.exp(alpha + beta - log_z[:, None, None])
+    return marginals * mask.bool()[:, :, None]
+
+
+def crf_sequence_scores(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, tags: torch.Tensor) -> torch.Tensor:
+    """The CRF's score of given tag sequences (batch-first, padded), float64: start + emissions + transitions + end."""
+    e, mask, start, end, trans = _crf_parts(crf, emissions, mask)
+    batch = torch.arange(e.size(0))
+    score = start[tags[:, 0]] + e[batch, 0, tags[:, 0]]
+    for t in range(1, e.size(1)):
+        score = score + torch.where(mask[:, t], trans[tags[:, t - 1], tags[:, t]] + e[batch, t, tags[:, t]], 0.0)
+    last = tags[batch, mask.sum(dim=1) - 1]
+    return score + end[last]
+
+
+@torch.no_grad()
+def crf_kbest(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, k: int) -> list[list[tuple[list[int], float]]]:
+    """The k highest-scoring tag sequences of each sequence with their log-probabilities (score - log Z).
+
+    List Viterbi: at each word, for each tag, the k best prefixes ending in that tag are
+    kept (a prefix outside them cannot start one of the k best paths, so this is exact).
+    Per sequence: at most k (fewer when fewer tag sequences exist), best first; ties keep
+    torch's ``topk`` order. The first is the Viterbi path that ``crf.decode`` gives.
+    """
+    k = check_k(k)
+    e, mask, start, end, trans = _crf_parts(crf, emissions, mask)
+    batch, time, n_tags = e.shape
+    # scores[b, j, r]: the r-th best prefix score ending in tag j (-inf where fewer prefixes exist)
+    scores = torch.full((batch, n_tags, k), float("-inf"), dtype=e.dtype, device=e.device)
+    scores[:, :, 0] = start + e[:, 0]
+    pointers = []  # per step t >= 1: (batch, tags, k) index into the previous step's tags * k + rank
+    keep = torch.arange(n_tags * k, device=e.device).reshape(1, n_tags, k).expand(batch, -1, -1)
+    for t in range(1, time):
+        candidates = scores.reshape(batch, n_tags * k, 1) + trans.repeat_interleave(k, dim=0)[None] + e[:, t, None, :]
+        best, index = candidates.topk(k, dim=1)  # (batch, k, tags): the k best ways into each tag
+        on = mask[:, t, None, None]
+        scores = torch.where(on, best.transpose(1, 2), scores)
+        pointers.append(torch.where(on, index.transpose(1, 2), keep))
+    final = (scores + end[None, :, None]).reshape(batch, n_tags * k)
+    top, where = final.topk(k, dim=1)
+    log_z = crf_log_partition(crf, emissions, mask)
+    top, where, log_z = top.cpu(), where.cpu(), log_z.cpu()
+    pointers = [p.cpu() for p in pointers]
+    lengths = mask.sum(dim=1).tolist()
+    out = []
+    for b in range(batch):
+        found = []
+        for score, flat in zip(top[b].tolist(), where[b].tolist()):
+            if score == float("-inf"):
+                break
+            path = [flat // k]
+            for t in range(lengths[b] - 1, 0, -1):
+                flat = int(pointers[t - 1][b, flat // k, flat % k])
+                path.append(flat // k)
+            found.append((path[::-1], score - float(log_z[b])))
+        out.append(found)
+    return out
 
 
 class BiLstmCrfTagger(Tagger):
@@ -129,8 +324,10 @@ class BiLstmCrfTagger(Tagger):
 
     ``hidden_size`` is therefore the number of units per direction and layer, as in
     ``torch.nn.LSTM``. ``word_dropout``, ``unk_alpha`` and ``id_prefix_digits`` control
-    how unseen words and ids are handled (see the module docstring). ``labels`` and
-    ``tag_field`` select the 13-tag task or the co-reference variant (Table 5).
+    how unseen words and ids are handled (see the module docstring). ``char_embedding_dim``
+    and ``char_filters`` (both 0, off, by default: the paper's network; ``CHAR_FEATURES``
+    for Ma & Hovy's 30 and 30) add the character CNN. ``labels`` and ``tag_field`` select
+    the 13-tag task or the co-reference variant (Table 5).
     """
 
     kind = "bilstm-crf"
@@ -150,14 +347,25 @@ class BiLstmCrfTagger(Tagger):
         word_dropout: float = 0.05,
         unk_alpha: float = 0.25,
         id_prefix_digits: int = 4,
+        char_embedding_dim: int = 0,
+        char_filters: int = 0,
     ) -> None:
         super().__init__(labels=labels, tag_field=tag_field)
         if min(embedding_dim, hidden_size, num_layers, batch_size, epochs) < 1:
             raise ValueError("embedding_dim, hidden_size, num_layers, batch_size and epochs must be positive")
-        if not (0 <= dropout < 1 and 0 <= word_dropout < 1 and unk_alpha >= 0 and 0 <= id_prefix_digits <= 7):
-            raise ValueError("dropout and word_dropout must be in [0, 1), unk_alpha >= 0, id_prefix_digits in 0..7")
+        if not 0 <= dropout < 1:
+            raise ValueError(f"dropout must be in [0, 1), got {dropout}")
+        if not 0 <= word_dropout < 1:
+            raise ValueError(f"word_dropout must be in [0, 1), got {word_dropout}")
+        if not (unk_alpha >= 0 and 0 <= id_prefix_digits <= 7):
+            raise ValueError("unk_alpha must be >= 0 and id_prefix_digits in 0..7")
         if learning_rate <= 0:
             raise ValueError(f"learning_rate must be positive, got {learning_rate}")
+        if char_embedding_dim < 0 or char_filters < 0 or (char_embedding_dim == 0) != (char_filters == 0):
+            raise ValueError(
+                "char_embedding_dim and char_filters must both be 0 (no character features) or both positive, "
+                f"got {char_embedding_dim} and {char_filters}"
+            )
         self.embedding_dim = embedding_dim
         self.hidden_size = hidden_size
         self.num_layers = num_layers
@@ -168,8 +376,12 @@ class BiLstmCrfTagger(Tagger):
         self.word_dropout = word_dropout
         self.unk_alpha = unk_alpha
         self.id_prefix_digits = id_prefix_digits
+        self.char_embedding_dim = char_embedding_dim
+        self.char_filters = char_filters
         self.vocabulary: list[str] = []
         self._index: dict[str, int] = {}
+        self.characters: list[str] = []
+        self._char_index: dict[str, int] = {}
         self.network: BiLstmCrfNetwork | None = None
 
     # -- settings and state ---------------------------------------------------------------
@@ -185,7 +397,14 @@ class BiLstmCrfTagger(Tagger):
             "word_dropout": self.word_dropout,
             "unk_alpha": self.unk_alpha,
             "id_prefix_digits": self.id_prefix_digits,
+            "char_embedding_dim": self.char_embedding_dim,
+            "char_filters": self.char_filters,
         }
+
+    @property
+    def uses_characters(self) -> bool:
+        """Whether words are also read character by character (``char_filters > 0``)."""
+        return self.char_filters > 0
 
     @property
     def is_trained(self) -> bool:
@@ -195,12 +414,20 @@ class BiLstmCrfTagger(Tagger):
         self._check_trained("n_parameters")
         return sum(p.numel() for p in self.network.parameters() if p.requires_grad)
 
-    def _build(self, vocabulary: Sequence[str]) -> None:
+    def _build(self, vocabulary: Sequence[str], characters: Sequence[str] = ()) -> None:
         self.vocabulary = list(vocabulary)
         self._index = {w: i for i, w in enumerate(self.vocabulary)}
+        self.characters = list(characters) if self.uses_characters else []
+        self._char_index = {c: i for i, c in enumerate(self.characters)}
         self.network = BiLstmCrfNetwork(
-            len(self.vocabulary), len(self.labels), self.embedding_dim, self.hidden_size, self.num_layers, self.dropout
+            len(self.vocabulary), len(self.labels), self.embedding_dim, self.hidden_size, self.num_layers, self.dropout,
+            n_chars=len(self.characters), char_embedding_dim=self.char_embedding_dim, char_filters=self.char_filters,
         )
+        self.network.to(self.device)
+
+    def _move(self, device: str) -> None:
+        if self.network is not None:
+            self.network.to(device)
 
     # -- words to ids -----------------------------------------------------------------------
     def word_ids(self, words: Sequence[str]) -> list[int]:
@@ -208,13 +435,52 @@ class BiLstmCrfTagger(Tagger):
         keys = (word_key(w, self.id_prefix_digits) for w in words)
         return [self._index.get(k, self._index[fallback_token(k)]) for k in keys]
 
+    def char_ids(self, words: Sequence[str]) -> list[list[int]]:
+        """Character-vocabulary ids of each word's characters (``word_characters``); unknown characters -> ``<unk>``."""
+        unknown = self._char_index[UNK]
+        return [[self._char_index.get(c, unknown) for c in word_characters(w)] for w in words]
+
     def _batch(self, id_lists: Sequence[Sequence[int]]) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
         lengths = torch.tensor([len(ids) for ids in id_lists])
         padded = torch.zeros(len(id_lists), int(lengths.max()), dtype=torch.long)
         for i, ids in enumerate(id_lists):
             padded[i, : len(ids)] = torch.as_tensor(ids, dtype=torch.long)
         mask = torch.arange(padded.size(1))[None, :] < lengths[:, None]
-        return padded, lengths, mask
+        return padded.to(self.device), lengths, mask.to(self.device)
+
+    def _char_batch(self, char_lists: Sequence[Sequence[Sequence[int]]], time: int) -> torch.Tensor | None:
+        """(batch, time, chars) character ids, zero-padded; None without character features."""
+        if not self.uses_characters:
+            return None
+        width = max((len(c) for words in char_lists for c in words), default=0) or 1
+        padded = torch.zeros(len(char_lists), time, width, dtype=torch.long)
+        for i, words in enumerate(char_lists):
+            for j, chars in enumerate(words):
+                if chars:
+                    padded[i, j, : len(chars)] = torch.as_tensor(chars, dtype=torch.long)
+        return padded.to(self.device)
+
+    def _emissions(self, sentences: Sequence[Sequence[str]]) -> tuple[torch.Tensor, torch.Tensor]:
+        """(emissions, mask) of non-empty word lists, in evaluation mode."""
+        words, lengths, mask = self._batch([self.word_ids(s) for s in sentences])
+        chars = self._char_batch([self.char_ids(s) for s in sentences], words.size(1)) if self.uses_characters else None
+        return self.network.emissions(words, lengths, chars), mask
+
+    def input_vectors(self, words: Sequence[str]) -> np.ndarray:
+        """What the BiLSTM reads for each word (no dropout): (n_words, embedding_dim + char_filters).
+
+        Without character features an unknown word is exactly its fallback token's vector
+        (``<unk>``); with them, its characters make it its own.
+        """
+        self._check_trained("input_vectors")
+        words = check_sentences([words])[0]
+        if not words:
+            return np.zeros((0, self.embedding_dim + self.char_filters), dtype=np.float32)
+        ids, _, _ = self._batch([self.word_ids(words)])
+        chars = self._char_batch([self.char_ids(words)], ids.size(1)) if self.uses_characters else None
+        self.network.eval()
+        with torch.inference_mode():
+            return self.network.word_vectors(ids, chars)[0].cpu().numpy()
 
     # -- training -------------------------------------------------------------------------------
     def fit(
@@ -225,27 +491,34 @@ class BiLstmCrfTagger(Tagger):
         epochs: int | None = None,
         progress: bool = True,
         seed: int = DEFAULT_SEED,
+        device: str | None = None,
     ) -> pd.DataFrame:
-        """Build the vocabulary from ``train_rows`` and train from scratch with Adam.
+        """Build the vocabulary (and the character vocabulary) from ``train_rows`` and train from scratch with Adam.
 
         Per epoch ``history`` records the mean training loss (minus the CRF
         log-likelihood per instruction), the training word accuracy as the paper's
         Fig. 13(a) plots it (over the epoch's batches, dropout on, as Keras reports it),
         validation Acc_word / Acc_inst when ``validation_rows`` are given, and seconds.
+        ``device``: ``"auto"``, ``"cpu"`` or ``"cuda"`` (``None``: the tagger's, cpu unless ``to`` said so).
         """
         train_rows, gold, validation_rows, validation_gold, epochs = self._fit_input(
             train_rows, validation_rows, epochs, self.epochs
         )
+        if device is not None:
+            self._device = resolve_device(device)
 
         seed_everything(seed)
         rng = np.random.default_rng(seed)
         key_lists = [[word_key(w, self.id_prefix_digits) for w in r["words"]] for r in train_rows]
         counts = Counter(k for keys in key_lists for k in keys)
-        self._build([*SPECIAL_TOKENS, *sorted(k for k in counts if k not in SPECIAL_TOKENS)])
+        characters = character_vocabulary(w for r in train_rows for w in r["words"]) if self.uses_characters else ()
+        self._build([*SPECIAL_TOKENS, *sorted(k for k in counts if k not in SPECIAL_TOKENS)], characters)
         tag_index = {t: i for i, t in enumerate(self.labels)}
         tag_lists = [[tag_index[t] for t in tags] for tags in gold]
         key_ids = [np.array([self._index[k] for k in keys]) for keys in key_lists]
         fallback_ids = [np.array([self._index[fallback_token(k)] for k in keys]) for keys in key_lists]
+        # A word dropped out to its fallback token keeps its characters.
+        char_lists = [self.char_ids(r["words"]) for r in train_rows] if self.uses_characters else None
         drop_p = [
             np.array([max(self.word_dropout, self.unk_alpha / (self.unk_alpha + counts[k])) for k in keys])
             for keys in key_lists
@@ -266,8 +539,9 @@ class BiLstmCrfTagger(Tagger):
                     np.where(rng.random(len(key_ids[i])) < drop_p[i], fallback_ids[i], key_ids[i]) for i in index
                 ]
                 words, lengths, mask = self._batch(ids)
+                chars = self._char_batch([char_lists[i] for i in index], words.size(1)) if char_lists else None
                 tags, _, _ = self._batch([tag_lists[i] for i in index])
-                emissions = self.network.emissions(words, lengths)
+                emissions = self.network.emissions(words, lengths, chars)
                 loss = -self.network.crf(emissions, tags, mask=mask, reduction="mean")
                 optimizer.zero_grad()
                 loss.backward()
@@ -289,30 +563,113 @@ class BiLstmCrfTagger(Tagger):
                                 seed=seed, started=started)
 
     # -- prediction ---------------------------------------------------------------------------
+    def _batches(self, sentences: Sentences, batch_size: int) -> Iterable[tuple[list[int], torch.Tensor, torch.Tensor]]:
+        """(indices, emissions, mask) for batches of the non-empty word lists, in evaluation mode."""
+        self.network.eval()
+        todo = [i for i, words in enumerate(sentences) if words]
+        step = max(1, batch_size)
+        for start in range(0, len(todo), step):
+            index = todo[start : start + step]
+            emissions, mask = self._emissions([sentences[i] for i in index])
+            yield index, emissions, mask
+
     def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
         """Tag each word list (Viterbi decoding of the CRF); words as typed, any case."""
         sentences = check_sentences(sentences)
         self._check_trained("predict")
         out: list[list[str]] = [[] for _ in sentences]
-        todo = [i for i, words in enumerate(sentences) if words]
-        self.network.eval()
         with torch.inference_mode():
-            for start in range(0, len(todo), max(1, batch_size)):
-                index = todo[start : start + max(1, batch_size)]
-                words, lengths, mask = self._batch([self.word_ids(sentences[i]) for i in index])
-                paths = self.network.crf.decode(self.network.emissions(words, lengths), mask=mask)
-                for i, path in zip(index, paths):
+            for index, emissions, mask in self._batches(sentences, batch_size):
+                for i, path in zip(index, self.network.crf.decode(emissions, mask=mask)):
                     out[i] = [self.labels[t] for t in path]
+        return out
+
+    def predict_marginals(self, sentences: Sentences, batch_size: int = 64) -> list[np.ndarray]:
+        """Per word list, P(word i has label j) as an (n_words, n_labels) array: CRF forward-backward (``crf_marginals``)."""
+        sentences = check_sentences(sentences)
+        self._check_trained("predict_marginals")
+        out = [np.zeros((0, len(self.labels))) for _ in sentences]
+        with torch.inference_mode():
+            for index, emissions, mask in self._batches(sentences, batch_size):
+                marginals = crf_marginals(self.network.crf, emissions, mask).cpu().numpy()
+                for row, i in enumerate(index):
+                    out[i] = marginals[row, : len(sentences[i])]
+        return out
+
+    def predict_kbest(self, sentences: Sentences, k: int, batch_size: int = 64) -> list[KBest]:
+        """Per word list, the k most probable tag sequences and their log-probabilities (``crf_kbest``), best first.
+
+        The first is ``predict``'s Viterbi path; an empty word list gives ``[([], 0.0)]``.
+        """
+        k = check_k(k)
+        sentences = check_sentences(sentences)
+        self._check_trained("predict_kbest")
+        out: list[KBest] = [[([], 0.0)] for _ in sentences]
+        with torch.inference_mode():
+            for index, emissions, mask in self._batches(sentences, batch_size):
+                for i, found in zip(index, crf_kbest(self.network.crf, emissions, mask, k)):
+                    out[i] = [([self.labels[t] for t in path], log_p) for path, log_p in found]
+        return out
+
+    def predict_confidence(self, sentences: Sentences, k: int = 5, batch_size: int = 64) -> list[TagConfidence]:
+        """Viterbi tags, forward-backward marginals and the k best sequences, from one pass of the network."""
+        k = check_k(k)
+        sentences = check_sentences(sentences)
+        self._check_trained("predict_confidence")
+        out = [TagConfidence([], np.zeros((0, len(self.labels))), [([], 0.0)]) for _ in sentences]
+        with torch.inference_mode():
+            for index, emissions, mask in self._batches(sentences, batch_size):
+                paths = self.network.crf.decode(emissions, mask=mask)
+                marginals = crf_marginals(self.network.crf, emissions, mask).cpu().numpy()
+                kbest = crf_kbest(self.network.crf, emissions, mask, k)
+                for row, i in enumerate(index):
+                    out[i] = TagConfidence(
+                        [self.labels[t] for t in paths[row]],
+                        marginals[row, : len(sentences[i])],
+                        [([self.labels[t] for t in path], log_p) for path, log_p in kbest[row]],
+                    )
         return out
 
     # -- saving and loading ----------------------------------------------------------------------
     def _save_weights(self, directory: Path) -> dict[str, Any]:
         from safetensors.torch import save_file
 
-        state = {k: v.detach().contiguous() for k, v in self.network.state_dict().items()}
+        state = {k: v.detach().cpu().contiguous() for k, v in self.network.state_dict().items()}
         save_file(state, str(directory / WEIGHTS_FILE), metadata={"kind": self.kind})
         (directory / VOCABULARY_FILE).write_text(json.dumps(self.vocabulary, ensure_ascii=False) + "\n", encoding="utf-8")
-        return {"files": {"weights": WEIGHTS_FILE, "vocabulary": VOCABULARY_FILE}}
+        files = {"weights": WEIGHTS_FILE, "vocabulary": VOCABULARY_FILE}
+        if self.uses_characters:
+            (directory / CHAR_VOCABULARY_FILE).write_text(
+                json.dumps(self.characters, ensure_ascii=False) + "\n", encoding="utf-8"
+            )
+            files["characters"] = CHAR_VOCABULARY_FILE
+        return {"files": files}
+
+    @staticmethod
+    def _read_characters(directory: Path) -> list[str]:
+        """The character vocabulary of a saved tagger with character features; TaggerLoadError if unusable."""
+        path = directory / CHAR_VOCABULARY_FILE
+        if not path.is_file():
+            raise TaggerLoadError(
+                f"{directory} is not a complete saved tagger: its settings use character features "
+                f"but {CHAR_VOCABULARY_FILE} is missing"
+            )
+        try:
+            characters = json.loads(path.read_text(encoding="utf-8"))
+        except (json.JSONDecodeError, UnicodeDecodeError) as e:
+            raise TaggerLoadError(f"{directory}: {CHAR_VOCABULARY_FILE} is not valid JSON ({e})") from None
+        n = len(CHAR_SPECIAL_TOKENS)
+        if (
+            not isinstance(characters, list)
+            or characters[:n] != list(CHAR_SPECIAL_TOKENS)
+            or not all(isinstance(c, str) and len(c) == 1 for c in characters[n:])
+            or len(set(characters)) != len(characters)
+        ):
+            raise TaggerLoadError(
+                f"{directory}: {CHAR_VOCABULARY_FILE} is not a character vocabulary "
+                f"(a list starting with {list(CHAR_SPECIAL_TOKENS)}, then distinct single characters)"
+            )
+        return characters
 
     @classmethod
     def _load_weights(cls, directory: Path, meta: Mapping[str, Any]) -> "BiLstmCrfTagger":
@@ -329,14 +686,20 @@ class BiLstmCrfTagger(Tagger):
             raise TaggerLoadError(f"{directory}: {VOCABULARY_FILE} is not valid JSON ({e})") from None
         if not isinstance(vocabulary, list) or any(t not in vocabulary for t in SPECIAL_TOKENS):
             raise TaggerLoadError(f"{directory}: {VOCABULARY_FILE} is not a vocabulary list with the special tokens")
+        characters = cls._read_characters(directory) if tagger.uses_characters else []
         try:
-            state = load_file(str(directory / WEIGHTS_FILE))
+            state = load_file(str(directory / WEIGHTS_FILE), device="cpu")
         except (SafetensorError, OSError, ValueError) as e:
             raise TaggerLoadError(f"{directory}: {WEIGHTS_FILE} is corrupt ({e})") from None
-        tagger._build(vocabulary)
+        tagger._build(vocabulary, characters)
         try:
             tagger.network.load_state_dict({k: v.float() for k, v in state.items()})
         except RuntimeError as e:
+            if "char_cnn.embedding.weight" in str(e) and "char_cnn.embedding.weight" in state:
+                raise TaggerLoadError(
+                    f"{directory}: {CHAR_VOCABULARY_FILE} lists {len(characters)} characters but {WEIGHTS_FILE} was "
+                    f"trained with {state['char_cnn.embedding.weight'].shape[0]}; the files do not belong together"
+                ) from None
             raise TaggerLoadError(
                 f"{directory}: {WEIGHTS_FILE} does not fit the settings in tagger.json ({str(e).splitlines()[0]})"
             ) from None

@@ -1,15 +1,22 @@
 """Command-line commands for the taggers: ``train`` and ``evaluate``.
 
-``add_commands(subparsers)`` adds both to an ``argparse`` sub-command parser (the one of
-``python -m drywall_lab``). Until that is wired, the same commands run as
-``python -m drywall_lab.nlu.cli train ...`` / ``... evaluate ...``::
+``add_commands(subparsers)`` adds both to an ``argparse`` sub-command parser; they are
+wired into ``python -m drywall_lab`` (``drywall_lab/__main__.py``), and also run on their
+own as ``python -m drywall_lab.nlu.cli train ...`` / ``... evaluate ...``::
 
-    train bilstm-crf --out runs/lstm-m1                     # the paper's LSTM-M1 settings
-    train bert --out runs/bert-m4 --train-size 316          # a BERT-M4-sized training set
-    train bert --out runs/bert-c1 --coref                   # the co-reference variant (Table 5)
-    evaluate --split test                                   # the shipped default tagger
-    evaluate --tagger runs/lstm-m1 --split validation
-    evaluate --tagger gold --split novel                    # the gold tags themselves (accuracy 1)
+    python -m drywall_lab train bilstm-crf --out runs/lstm-m1            # the paper's LSTM-M1 settings
+    python -m drywall_lab train bilstm-crf --out runs/lstm-char --char-features --word-dropout 0.1
+    python -m drywall_lab train bert --out runs/bert-m4 --train-size 316 # a BERT-M4-sized training set
+    python -m drywall_lab train bert --out runs/bert-c1 --coref          # the co-reference variant (Table 5)
+    python -m drywall_lab evaluate --split test                          # the shipped default tagger
+    python -m drywall_lab evaluate --tagger runs/lstm-m1 --split validation --device cpu
+    python -m drywall_lab evaluate --tagger gold --split novel           # the gold tags themselves (accuracy 1)
+
+``--char-features`` adds Ma & Hovy's character CNN to the BiLSTM-CRF (``CHAR_FEATURES``);
+``--word-dropout P`` sets the least probability with which a training word is replaced by
+its unknown token (rare words more often; see ``drywall_lab.nlu.bilstm_crf``).
+``--device auto|cpu|cuda`` (default ``auto``: a GPU when torch sees one, else the CPU)
+says where to train or predict; asking for ``cuda`` on a machine without one is an error.
 
 ``evaluate`` prints the per-tag error table (the paper's Table 4 for one model), the
 mix-ups, and ends with exactly one line, ``result_line``:
@@ -24,7 +31,7 @@ import sys
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
-from drywall_lab.nlu.base import DEFAULT_SEED, Tagger, labels_for, load_tagger
+from drywall_lab.nlu.base import DEVICE_CHOICES, DEFAULT_SEED, Tagger, labels_for, load_tagger, resolve_device
 from drywall_lab.nlu.metrics import TaggingScores, confusion_pairs, score_tagging, tag_error_table
 
 EVALUATION_SPLITS = ("validation", "test", "novel")
@@ -55,23 +62,37 @@ def make_tagger(
     encoder: str | None = None,
     learning_rate: float | None = None,
     warmup_ratio: float | None = None,
+    char_features: bool = False,
+    word_dropout: float | None = None,
 ) -> Tagger:
     """A fresh tagger of ``kind`` with the paper's settings, for the 13 tags or the co-reference variant.
 
-    ``learning_rate`` (either kind) and ``warmup_ratio`` (BERT only) replace the paper's when given.
+    ``learning_rate`` (either kind) and ``warmup_ratio`` (BERT only) replace the paper's when given;
+    ``char_features`` (Ma & Hovy's character CNN, ``CHAR_FEATURES``) and ``word_dropout`` are BiLSTM-CRF only.
     """
     from drywall_lab.nlu.bert import DEFAULT_ENCODER, BertTagger
-    from drywall_lab.nlu.bilstm_crf import BiLstmCrfTagger
+    from drywall_lab.nlu.bilstm_crf import CHAR_FEATURES, BiLstmCrfTagger
 
     labels, tag_field = labels_for(coref)
-    settings = {"learning_rate": learning_rate} if learning_rate is not None else {}
+    settings: dict[str, Any] = {"learning_rate": learning_rate} if learning_rate is not None else {}
     if kind == "bert":
+        if char_features or word_dropout is not None:
+            raise ValueError("--char-features and --word-dropout apply to the bilstm-crf tagger only")
         if warmup_ratio is not None:
             settings["warmup_ratio"] = warmup_ratio
         return BertTagger(encoder or DEFAULT_ENCODER, labels=labels, tag_field=tag_field, **settings)
     if kind == "bilstm-crf":
         if encoder is not None or warmup_ratio is not None:
             raise ValueError("--encoder and --warmup-ratio apply to the bert tagger only")
+        if word_dropout is not None:
+            if not 0 <= word_dropout < 1:
+                raise ValueError(
+                    f"--word-dropout must be at least 0 and below 1 (the probability that a training word is "
+                    f"replaced by its unknown token), got {word_dropout}"
+                )
+            settings["word_dropout"] = word_dropout
+        if char_features:
+            settings.update(CHAR_FEATURES)
         return BiLstmCrfTagger(labels=labels, tag_field=tag_field, **settings)
     raise ValueError(f"unknown tagger kind {kind!r}; expected one of {', '.join(TAGGER_KINDS)}")
 
@@ -81,7 +102,9 @@ def cmd_train(args: argparse.Namespace) -> int:
     from drywall_lab.corpus import read_split
 
     tagger = make_tagger(args.kind, coref=args.coref, encoder=args.encoder, learning_rate=args.learning_rate,
-                         warmup_ratio=args.warmup_ratio)
+                         warmup_ratio=args.warmup_ratio, char_features=args.char_features,
+                         word_dropout=args.word_dropout)
+    device = resolve_device(args.device)
     train_rows = read_split("train")
     if args.train_size is not None:
         if not 1 <= args.train_size <= len(train_rows):
@@ -89,11 +112,11 @@ def cmd_train(args: argparse.Namespace) -> int:
         train_rows = train_rows[: args.train_size]
     if args.epochs is not None and args.epochs < 1:
         raise ValueError(f"--epochs must be at least 1, got {args.epochs}")
-    history = tagger.fit(train_rows, read_split("validation"), epochs=args.epochs, seed=args.seed)
+    history = tagger.fit(train_rows, read_split("validation"), epochs=args.epochs, seed=args.seed, device=device)
     directory = tagger.save(args.out)
     last = history.iloc[-1]
     print(f"saved the {tagger.kind} tagger ({tagger.n_parameters():,} parameters, "
-          f"{len(train_rows)} training instructions) to {directory}")
+          f"{len(train_rows)} training instructions, trained on {device}) to {directory}")
     print(
         f"epoch {int(last['epoch'])}: train_loss={last['train_loss']:.4f} train_acc_word={last['train_acc_word']:.4f} "
         f"val_acc_word={last['val_acc_word']:.4f} val_acc_inst={last['val_acc_inst']:.4f} "
@@ -102,25 +125,30 @@ def cmd_train(args: argparse.Namespace) -> int:
     return 0
 
 
-def evaluate_split(tagger: Tagger | str | Path | None, split: str) -> tuple[list[list[str]], list[list[str]], Sequence[str]]:
+def evaluate_split(
+    tagger: Tagger | str | Path | None, split: str, device: str | None = None
+) -> tuple[list[list[str]], list[list[str]], Sequence[str]]:
     """(gold, predicted, labels) on a corpus split, for a tagger, a saved tagger's directory,
     ``"gold"`` (the corpus tags themselves) or ``None`` (the shipped default tagger).
 
+    ``device`` (``"auto"``, ``"cpu"``, ``"cuda"``) is where a directory's or the default tagger
+    predicts (``None``: the CPU; a ``Tagger`` object predicts where it is).
     For a co-reference tagger (15 labels) ``gold`` and ``predicted`` are its 15-label tags."""
     from drywall_lab.corpus import read_split
     from drywall_lab.corpus.tags import TAGS
-    from drywall_lab.nlu.default import default_tagger
+    from drywall_lab.nlu.default import DEFAULT_TAGGER_DIR, default_tagger
 
     if split not in EVALUATION_SPLITS:
         raise ValueError(f"unknown split {split!r}; evaluate on {', '.join(EVALUATION_SPLITS)}")
+    device = resolve_device(device) if device is not None else "cpu"
     rows = read_split(split)
     if isinstance(tagger, str) and tagger == "gold":
         gold = [list(r["tags"]) for r in rows]
         return gold, [list(t) for t in gold], TAGS
-    if tagger is None:
-        tagger = default_tagger()
+    if tagger is None:  # the shared copy stays on the CPU; another device gets its own copy
+        tagger = default_tagger() if device == "cpu" else load_tagger(DEFAULT_TAGGER_DIR, device=device)
     elif not isinstance(tagger, Tagger):
-        tagger = load_tagger(tagger)
+        tagger = load_tagger(tagger, device=device)
     gold = tagger.gold_tags(rows)
     return gold, tagger.predict([r["words"] for r in rows]), tagger.labels
 
@@ -138,7 +166,7 @@ def task_figures(split: str, predicted: Sequence[Sequence[str]]) -> dict[str, fl
 
 def cmd_evaluate(args: argparse.Namespace) -> int:
     """``evaluate [--tagger DIR|gold] --split SPLIT``: Table 4 for one model, then the result line with acc_task."""
-    gold, predicted, labels = evaluate_split(args.tagger, args.split)
+    gold, predicted, labels = evaluate_split(args.tagger, args.split, device=args.device)
     scores = score_tagging(gold, predicted)
     name = "the default tagger" if args.tagger is None else ("the gold tags" if args.tagger == "gold" else args.tagger)
     print(f"{name} on the {args.split} split: {scores.n_instructions} instructions, {scores.n_words} words, "
@@ -174,6 +202,14 @@ def add_commands(subparsers: argparse._SubParsersAction) -> None:
                    help="default: the paper's (1e-3 BiLSTM-CRF, 3e-5 BERT); the study trains MiniLM at 3e-4")
     p.add_argument("--warmup-ratio", type=float, default=None, metavar="R",
                    help="bert only: share of steps with a rising learning rate (default 0, as the paper)")
+    p.add_argument("--char-features", action="store_true",
+                   help="bilstm-crf only: add a character CNN to each word (Ma & Hovy 2016: char embedding 30, "
+                        "30 filters of width 3), so unseen words still carry their form")
+    p.add_argument("--word-dropout", type=float, default=None, metavar="P",
+                   help="bilstm-crf only: each training word is replaced by its unknown token with at least this "
+                        "probability (default 0.05; rare words more often)")
+    p.add_argument("--device", choices=DEVICE_CHOICES, default="auto",
+                   help="where to train: auto (a GPU when there is one, default), cpu or cuda")
     p.add_argument("--seed", type=int, default=DEFAULT_SEED)
     p.set_defaults(func=cmd_train)
 
@@ -181,6 +217,8 @@ def add_commands(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--tagger", default=None, metavar="DIR|gold",
                    help="a saved tagger's directory, or 'gold' for the corpus tags (default: the shipped tagger)")
     p.add_argument("--split", required=True, choices=EVALUATION_SPLITS)
+    p.add_argument("--device", choices=DEVICE_CHOICES, default="auto",
+                   help="where to predict: auto (a GPU when there is one, default), cpu or cuda")
     p.set_defaults(func=cmd_evaluate)
 
 

@@ -20,6 +20,8 @@ REFUSAL_REASONS: dict[str, str] = {
     "not_on_top": "the panel is under other panels in its stack",
     "past_wall_end": "the panel would reach past the last stud",
     "overlap": "the panel would overlap a panel already on the wall",
+    "unclear": "the words allow more than one command, or the tagger is not sure of a word the command depends on: "
+               "the message asks one question (drywall_lab.decision)",
 }
 
 

@@ -168,20 +168,23 @@ class FieldSet:
         return pd.DataFrame(rows)
 
 
-def _check_gold_line(g: Mapping, where: str) -> None:
-    missing = [k for k in ("episode", "step", "text", "style", "expect", "words", "tags") if k not in g]
+def _check_gold_line(g: Mapping, where: str, tagged: bool = True) -> None:
+    required = ("episode", "step", "text", "style", "expect") + (("words", "tags") if tagged else ())
+    missing = [k for k in required if k not in g]
     if missing:
         raise ValueError(f"{where}: the gold line has no {', '.join(missing)}")
     expect = g["expect"]
     if set(expect) == {"refusal"}:
-        if expect["refusal"] not in REFUSAL_REASONS:
+        if tagged and expect["refusal"] not in REFUSAL_REASONS:
             raise ValueError(f"{where}: unknown refusal reason {expect['refusal']!r}")
     elif set(expect) == set(COMMAND_KEYS):
         if expect["placement"] not in {p.value for p in Placement}:
             raise ValueError(f"{where}: unknown placement {expect['placement']!r}; expected one of "
                              f"{', '.join(p.value for p in Placement)}")
-    else:
+    elif tagged or set(expect) != {"refusal"}:
         raise ValueError(f"{where}: 'expect' must be {{drywall_id, stud_id, placement}} or {{refusal}}, not {expect}")
+    if not tagged:
+        return
     if list(g["words"]) != tokenize(g["text"]):
         raise ValueError(f"{where}: 'words' are not tokenize(text)")
     if len(g["tags"]) != len(g["words"]):
@@ -191,8 +194,12 @@ def _check_gold_line(g: Mapping, where: str) -> None:
         raise ValueError(f"{where}: unknown tag(s) {', '.join(unknown)}; the tags are {', '.join(TAGS)}")
 
 
-def read_field_set(dir: Path | str = FIELD_DIR) -> FieldSet:  # noqa: A002 (the name the issue gives)
-    """Read ``instructions.jsonl`` and ``gold.jsonl`` from ``dir`` and check that they agree, step for step."""
+def read_field_set(dir: Path | str = FIELD_DIR, tagged: bool = True) -> FieldSet:  # noqa: A002 (the issue's name)
+    """Read ``instructions.jsonl`` and ``gold.jsonl`` from ``dir`` and check that they agree, step for step.
+
+    ``tagged=False`` reads a set whose gold has no hand-written ``words``/``tags`` and may name refusals
+    in its own words (``../shared/field``): it can be scored, not checked.
+    """
     directory = Path(dir)
     for name in (INSTRUCTIONS_NAME, GOLD_NAME):
         if not (directory / name).is_file():
@@ -202,7 +209,7 @@ def read_field_set(dir: Path | str = FIELD_DIR) -> FieldSet:  # noqa: A002 (the 
     by_step = {}
     for number, g in enumerate(gold, start=1):
         where = f"{directory / GOLD_NAME}, line {number}"
-        _check_gold_line(g, where)
+        _check_gold_line(g, where, tagged)
         key = (g["episode"], g["step"])
         if key in by_step:
             raise ValueError(f"{where}: episode {g['episode']} step {g['step']} appears twice")
@@ -254,6 +261,26 @@ def check_gold(field_set: FieldSet | None = None, site: Site | None = None) -> l
             except Refusal:
                 pass  # the site cannot carry it out, so the IM did not give it: already a mismatch above
     return mismatches
+
+
+def field_set_rows(field_set: FieldSet | None = None, site: Site | None = None) -> list[dict]:
+    """The set's steps as corpus rows (``words``, ``tags``, ``context.history``, ``expected``), so that the
+    taggers' ``evaluate`` scores it like a corpus split: each step's history is the episode's expected
+    commands before it, as in ``check_gold``."""
+    field_set = field_set if field_set is not None else read_field_set()
+    rows, histories = [], {}
+    for g in field_set.gold:
+        history = histories.setdefault(g["episode"], [])
+        expect = g["expect"]
+        expected = ({"drywall_id": None, "stud_id": None, "placement": None, "refusal": expect["refusal"]}
+                    if "refusal" in expect else {**{k: expect[k] for k in COMMAND_KEYS}, "refusal": None})
+        rows.append({"id": f"field-set-{g['episode']}-{g['step']}", "text": g["text"], "words": list(g["words"]),
+                     "tags": list(g["tags"]), "register": g["style"],
+                     "context": {"episode": g["episode"], "step": g["step"], "history": [dict(h) for h in history]},
+                     "expected": expected})
+        if "refusal" not in expect:
+            history.append({k: expect[k] for k in COMMAND_KEYS})
+    return rows
 
 
 # --- scoring a run ------------------------------------------------------------------------------

@@ -11,12 +11,15 @@ episodes with hand-checked tags and the commands they must give
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Iterable, Iterator, Mapping, Protocol, Sequence
+from typing import TYPE_CHECKING, Iterable, Iterator, Mapping, Protocol, Sequence
 
 from drywall_lab.corpus.io import read_jsonl, tokenize
 from drywall_lab.corpus.markup import parse
 from drywall_lab.im import ActionHistory, InformationMapper, Interpretation
 from drywall_lab.site import DATA_DIR, Site
+
+if TYPE_CHECKING:
+    from drywall_lab.decision import DecisionSettings
 
 LAYOUTS_PATH = DATA_DIR / "layouts" / "paper_layouts.jsonl"
 
@@ -94,18 +97,31 @@ def contract_record(episode_id: str | int, step: int, result: Interpretation) ->
     }
 
 
-def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None) -> list[Interpretation]:
-    """Tag every instruction of the episode (one batch), then map them in order on a fresh site."""
+def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None,
+                settings: "DecisionSettings | None" = None) -> list[Interpretation]:
+    """Tag every instruction of the episode (one batch), then decide them in order on a fresh site.
+
+    A tagger with confidence (``predict_confidence``, both of the project's taggers) goes through the
+    decision layer (``drywall_lab.decision``: IM-aware decoding; a question, refusal reason ``unclear``,
+    instead of a guess) with ``settings`` (default ``DEFAULT_SETTINGS``; ``BEST_PATH`` acts on the single
+    best tag sequence, as the paper does). Any other tagger's tags are mapped as they are.
+    """
+    from drywall_lab.decision import DEFAULT_SETTINGS, decide_episode
+
     words = [tokenize(text) for text in episode["instructions"]]
+    if hasattr(tagger, "predict_confidence"):
+        history = ActionHistory(site)
+        return [d.interpretation for d in decide_episode(words, tagger, settings or DEFAULT_SETTINGS, history)]
     tags = tagger.predict(words) if words else []
     mapper = InformationMapper(site)
     return [mapper.apply(w, t) for w, t in zip(words, tags)]
 
 
-def run_episodes(episodes: Iterable[Mapping], tagger: WordTagger, site: Site | None = None) -> Iterator[dict]:
-    """The ``run`` output records, episode after episode."""
+def run_episodes(episodes: Iterable[Mapping], tagger: WordTagger, site: Site | None = None,
+                 settings: "DecisionSettings | None" = None) -> Iterator[dict]:
+    """The ``run`` output records, episode after episode (spec section 6)."""
     for episode in episodes:
-        for step, result in enumerate(run_episode(episode, tagger, site)):
+        for step, result in enumerate(run_episode(episode, tagger, site, settings)):
             yield contract_record(episode["id"], step, result)
 
 

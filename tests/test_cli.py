@@ -200,9 +200,15 @@ def test_evaluate_reports_task_accuracy_through_the_rules(capsys):
     assert main(["evaluate", "--split", "validation"]) == 0
     last = capsys.readouterr().out.strip().splitlines()[-1]
     figures = dict(item.split("=") for item in last.split())
-    assert set(figures) == {"acc_word", "acc_inst", "n_instructions", "acc_task"}
+    assert set(figures) == {"acc_word", "acc_inst", "n_instructions", "acc_task", "acc_decided", "wrong_action_rate",
+                            "over_refusal_rate", "coverage"}
     # an instruction with every tag right gets its intended outcome (gold tags give 100%), so acc_task >= acc_inst
     assert float(figures["acc_task"]) >= float(figures["acc_inst"])
+    # the decision layer's three outcomes share out the instructions
+    shares = [float(figures[k]) for k in ("acc_decided", "wrong_action_rate", "over_refusal_rate")]
+    assert sum(shares) == pytest.approx(1.0, abs=2e-4)
+    assert main(["evaluate", "--tagger", "gold", "--split", "field-set"]) == 0
+    assert capsys.readouterr().out.strip().splitlines()[-1].endswith("acc_task=1.0000")
     rows = read_split("validation")
     undetermined = sum(r["expected"]["refusal"] == "undetermined" for r in rows) / len(rows)
     assert task_accuracy(rows, [["O"] * len(r["words"]) for r in rows]) == undetermined

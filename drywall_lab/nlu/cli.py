@@ -33,8 +33,8 @@ from typing import Any, Mapping, Sequence
 
 from drywall_lab.nlu.base import DEVICE_CHOICES, DEFAULT_SEED, Tagger, labels_for, load_tagger, resolve_device
 from drywall_lab.nlu.metrics import TaggingScores, confusion_pairs, score_tagging, tag_error_table
+from drywall_lab.splits import EVALUATION_SPLITS
 
-EVALUATION_SPLITS = ("validation", "test", "novel")
 TAGGER_KINDS = ("bilstm-crf", "bert")
 
 
@@ -64,6 +64,7 @@ def make_tagger(
     warmup_ratio: float | None = None,
     char_features: bool = False,
     word_dropout: float | None = None,
+    batch_size: int | None = None,
 ) -> Tagger:
     """A fresh tagger of ``kind`` with the paper's settings, for the 13 tags or the co-reference variant.
 
@@ -75,6 +76,10 @@ def make_tagger(
 
     labels, tag_field = labels_for(coref)
     settings: dict[str, Any] = {"learning_rate": learning_rate} if learning_rate is not None else {}
+    if batch_size is not None:
+        if batch_size < 1:
+            raise ValueError(f"--batch-size must be at least 1, got {batch_size}")
+        settings["batch_size"] = batch_size
     if kind == "bert":
         if char_features or word_dropout is not None:
             raise ValueError("--char-features and --word-dropout apply to the bilstm-crf tagger only")
@@ -98,21 +103,23 @@ def make_tagger(
 
 
 def cmd_train(args: argparse.Namespace) -> int:
-    """``train KIND --out DIR``: train on the training split (or its first N rows), validate, save."""
-    from drywall_lab.corpus import read_split
+    """``train KIND --out DIR [--corpus paper|field]``: train on a corpus's training split (or its first N rows),
+    validate on its validation split, save."""
+    from drywall_lab.splits import CORPORA, split_rows
 
     tagger = make_tagger(args.kind, coref=args.coref, encoder=args.encoder, learning_rate=args.learning_rate,
                          warmup_ratio=args.warmup_ratio, char_features=args.char_features,
-                         word_dropout=args.word_dropout)
+                         word_dropout=args.word_dropout, batch_size=args.batch_size)
     device = resolve_device(args.device)
-    train_rows = read_split("train")
+    train_split, validation_split = CORPORA[args.corpus]
+    train_rows = split_rows(train_split)
     if args.train_size is not None:
         if not 1 <= args.train_size <= len(train_rows):
             raise ValueError(f"--train-size must be between 1 and {len(train_rows)}, got {args.train_size}")
         train_rows = train_rows[: args.train_size]
     if args.epochs is not None and args.epochs < 1:
         raise ValueError(f"--epochs must be at least 1, got {args.epochs}")
-    history = tagger.fit(train_rows, read_split("validation"), epochs=args.epochs, seed=args.seed, device=device)
+    history = tagger.fit(train_rows, split_rows(validation_split), epochs=args.epochs, seed=args.seed, device=device)
     directory = tagger.save(args.out)
     last = history.iloc[-1]
     print(f"saved the {tagger.kind} tagger ({tagger.n_parameters():,} parameters, "
@@ -126,47 +133,59 @@ def cmd_train(args: argparse.Namespace) -> int:
 
 
 def evaluate_split(
-    tagger: Tagger | str | Path | None, split: str, device: str | None = None
-) -> tuple[list[list[str]], list[list[str]], Sequence[str]]:
+    tagger: Tagger | str | Path | None, split: str, device: str | None = None, *, return_tagger: bool = False
+) -> tuple:
     """(gold, predicted, labels) on a corpus split, for a tagger, a saved tagger's directory,
     ``"gold"`` (the corpus tags themselves) or ``None`` (the shipped default tagger).
 
     ``device`` (``"auto"``, ``"cpu"``, ``"cuda"``) is where a directory's or the default tagger
     predicts (``None``: the CPU; a ``Tagger`` object predicts where it is).
     For a co-reference tagger (15 labels) ``gold`` and ``predicted`` are its 15-label tags."""
-    from drywall_lab.corpus import read_split
     from drywall_lab.corpus.tags import TAGS
     from drywall_lab.nlu.default import DEFAULT_TAGGER_DIR, default_tagger
+    from drywall_lab.splits import split_rows
 
     if split not in EVALUATION_SPLITS:
         raise ValueError(f"unknown split {split!r}; evaluate on {', '.join(EVALUATION_SPLITS)}")
     device = resolve_device(device) if device is not None else "cpu"
-    rows = read_split(split)
+    rows = split_rows(split)
     if isinstance(tagger, str) and tagger == "gold":
         gold = [list(r["tags"]) for r in rows]
-        return gold, [list(t) for t in gold], TAGS
+        return (gold, [list(t) for t in gold], TAGS) + ((None,) if return_tagger else ())
     if tagger is None:  # the shared copy stays on the CPU; another device gets its own copy
         tagger = default_tagger() if device == "cpu" else load_tagger(DEFAULT_TAGGER_DIR, device=device)
     elif not isinstance(tagger, Tagger):
         tagger = load_tagger(tagger, device=device)
     gold = tagger.gold_tags(rows)
-    return gold, tagger.predict([r["words"] for r in rows]), tagger.labels
+    return (gold, tagger.predict([r["words"] for r in rows]), tagger.labels) + ((tagger,) if return_tagger else ())
 
 
-def task_figures(split: str, predicted: Sequence[Sequence[str]]) -> dict[str, float]:
+def task_figures(split: str, predicted: Sequence[Sequence[str]], tagger: Tagger | None = None) -> dict[str, float]:
     """``acc_task``: the share of the split's instructions whose final command (or refusal) is the
     intended one when the predicted tags go through the information-mapping rules (``drywall_lab.im``).
 
-    Co-reference tags (``Trg``, ``Dst``) are read as ``O`` by the rules, so this works for both tag sets."""
-    from drywall_lab.corpus import read_split
+    With a ``tagger``, also the decision layer's figures (``drywall_lab.decision``, issue 12):
+    ``acc_decided`` (the intended command, or a refusal or question where a refusal was intended),
+    ``wrong_action_rate`` (acted, not as intended), ``over_refusal_rate`` (a refusal or question where a
+    command was intended) and ``coverage`` (the share acted on). Co-reference tags (``Trg``, ``Dst``) are
+    read as ``O`` by the rules, so this works for both tag sets."""
     from drywall_lab.im import task_accuracy
+    from drywall_lab.splits import split_rows
 
-    return {"acc_task": task_accuracy(read_split(split), predicted)}
+    rows = split_rows(split)
+    figures = {"acc_task": task_accuracy(rows, predicted)}
+    if tagger is not None and tagger.tag_field == "tags":
+        from drywall_lab.decision import decide_rows, decision_scores
+
+        scores = decision_scores(rows, decide_rows(rows, tagger))
+        figures.update(acc_decided=scores["accuracy"], wrong_action_rate=scores["wrong_action_rate"],
+                       over_refusal_rate=scores["over_refusal_rate"], coverage=scores["coverage"])
+    return figures
 
 
 def cmd_evaluate(args: argparse.Namespace) -> int:
     """``evaluate [--tagger DIR|gold] --split SPLIT``: Table 4 for one model, then the result line with acc_task."""
-    gold, predicted, labels = evaluate_split(args.tagger, args.split, device=args.device)
+    gold, predicted, labels, tagger = evaluate_split(args.tagger, args.split, device=args.device, return_tagger=True)
     scores = score_tagging(gold, predicted)
     name = "the default tagger" if args.tagger is None else ("the gold tags" if args.tagger == "gold" else args.tagger)
     print(f"{name} on the {args.split} split: {scores.n_instructions} instructions, {scores.n_words} words, "
@@ -182,7 +201,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
             print(f"  {row.gold} -> {row.predicted}: {row.count}")
     else:
         print("no mix-ups")
-    print(result_line(scores, task_figures(args.split, predicted)))
+    print(result_line(scores, task_figures(args.split, predicted, tagger)))
     return 0
 
 
@@ -191,8 +210,11 @@ def add_commands(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser("train", help="train a tagger (BiLSTM-CRF or BERT) on the training split and save it")
     p.add_argument("kind", choices=TAGGER_KINDS, help="bilstm-crf (the paper's LSTM-M) or bert (BERT-M)")
     p.add_argument("--out", required=True, type=Path, metavar="DIR", help="directory to save the tagger in")
+    p.add_argument("--corpus", choices=("paper", "field"), default="paper",
+                   help="paper: data/corpus (the paper's study, default); field: the field corpus (site language)")
     p.add_argument("--train-size", type=int, default=None, metavar="N",
-                   help="train on the first N training instructions (default: all 1,268)")
+                   help="train on the first N training instructions (default: all: 1,268 paper, 20,000 field)")
+    p.add_argument("--batch-size", type=int, default=None, metavar="N", help="default: the paper's 16")
     p.add_argument("--epochs", type=int, default=None, metavar="N", help="default: the paper's (20 BiLSTM-CRF, 5 BERT)")
     p.add_argument("--coref", action="store_true", help="learn the 15 co-reference tags (the paper's Table 5)")
     p.add_argument("--encoder", default=None, metavar="PATH_OR_NAME",

@@ -1,0 +1,351 @@
+"""Deciding safely: IM-aware decoding, and a question instead of a guess (issue 12; spec section 5, ``unclear``).
+
+The paper's pipeline acts on the single best tag sequence. The paper's future work asks to
+"integrate the NLU and IM modules and use the building component information as an input"; this
+module does that. The tagger gives its k most probable tag sequences with their probabilities and
+each word's tag probabilities (``Tagger.predict_confidence``); every reading goes through the
+information-mapping rules against the site and the action history, and then:
+
+1. **One command, and sure of it**: the best reading gives a command, no other reading within the
+   margin gives another command, the readings that give it carry at least ``act`` of the probability,
+   and no word it depends on is doubtful (changing a doubtful word's tag to its second choice, or all
+   the doubtful words' together, does not change the outcome). The robot acts.
+2. **A second reading would be safer**: the best reading is ``undetermined`` (a missed tag), and
+   readings within the margin give exactly one command, with at least ``recover`` of the probability:
+   the robot takes that reading (the most probable one that is determined and feasible on the site).
+3. **Otherwise, ask** (refusal reason ``unclear``): two commands within the margin, or a command that
+   is not sure enough. The message says what was understood and asks one question ("Did you mean
+   panel 500321 on stud 500104 on its centre line, or on its left line?"). History and site untouched.
+4. A reading that the site refuses (overlap, buried panel, ...) is refused with the IM's own message
+   unless a feasible reading within the margin is likely enough to be worth a question.
+
+``DecisionSettings`` holds the thresholds; ``benchmarks/decision.py`` chooses them on the generated
+field-corpus validation and novel splits (never on the hand-written field sets) and records the
+risk-coverage curve. The rule trace (``Interpretation.trace``) ends with a ``decision`` stage naming the
+readings considered and why one was taken.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable, Iterable, Mapping, Sequence
+
+import numpy as np
+
+from drywall_lab.errors import Refusal
+from drywall_lab.im import ActionHistory, Interpretation, Trace
+from drywall_lab.im import interpret as im_interpret
+from drywall_lab.im import words as W
+from drywall_lab.site import Placement
+
+
+@dataclass(frozen=True)
+class DecisionSettings:
+    """The decision layer's thresholds (chosen by ``benchmarks/decision.py``; see ``DEFAULT_SETTINGS``).
+
+    ``k``: tag sequences read; ``margin``: natural-log probability below the best within which a reading
+    counts as a rival; ``act``: the probability the readings of a command must carry to act on it;
+    ``recover``: the same when the best reading was undetermined; ``doubt``: a word is doubtful when its
+    tag's probability is below ``1 - doubt``; ``question``: the probability of a feasible reading that
+    turns a site refusal into a question.
+    """
+
+    k: int = 8
+    margin: float = 3.0
+    act: float = 0.6
+    recover: float = 0.3
+    doubt: float = 0.2
+    question: float = 0.2
+
+    def __post_init__(self) -> None:
+        if self.k < 1:
+            raise ValueError(f"k must be at least 1, got {self.k}")
+        for name in ("act", "recover", "doubt", "question"):
+            value = getattr(self, name)
+            if not 0 <= value <= 1:
+                raise ValueError(f"{name} must be between 0 and 1, got {value}")
+        if self.margin < 0:
+            raise ValueError(f"margin must be at least 0, got {self.margin}")
+
+
+#: Acting on the single best reading, as the paper does: the layer switched off.
+BEST_PATH = DecisionSettings(k=1, margin=0.0, act=0.0, recover=1.0, doubt=1.0, question=1.0)
+#: The thresholds ``benchmarks/decision.py`` chose on the field corpus's validation and novel splits.
+DEFAULT_SETTINGS = DecisionSettings()
+
+
+# --- readings --------------------------------------------------------------------------------------------
+Outcome = tuple  # ("command", drywall_id, stud_id, placement) or ("refusal", reason)
+
+
+def outcome_of(interpretation: Interpretation) -> Outcome:
+    if interpretation.command is not None:
+        c = interpretation.command
+        return ("command", c.drywall_id, c.stud_id, c.placement.value)
+    return ("refusal", interpretation.refusal.reason)
+
+
+@dataclass
+class Reading:
+    """One tag sequence, its probability, and what the rules make of it."""
+
+    tags: list[str]
+    logprob: float
+    interpretation: Interpretation
+
+    @property
+    def outcome(self) -> Outcome:
+        return outcome_of(self.interpretation)
+
+    @property
+    def probability(self) -> float:
+        return math.exp(self.logprob)
+
+
+@dataclass
+class Decision:
+    """What the robot does with one instruction: act on ``interpretation.command``, or refuse/ask.
+
+    ``interpretation`` is the chosen reading's (its trace ends with the decision); ``confidence`` the
+    probability of the readings that give the chosen outcome; ``readings`` every reading considered;
+    ``action``: ``act``, ``recover`` (acted on a second reading), ``ask`` or ``refuse``.
+    """
+
+    words: list[str]
+    tags: list[str]
+    interpretation: Interpretation
+    confidence: float
+    action: str
+    readings: list[Reading] = field(default_factory=list)
+
+    @property
+    def command(self):
+        return self.interpretation.command
+
+    @property
+    def refusal(self) -> Refusal | None:
+        return self.interpretation.refusal
+
+    @property
+    def acted(self) -> bool:
+        return self.interpretation.command is not None
+
+
+# --- telling readings apart, in words ------------------------------------------------------------------------
+_PLACEMENT_TEXT = {
+    "vertical_left": "upright with its edge on the stud's left line",
+    "vertical_middle": "upright with its edge on the stud's centre line",
+    "horizontal_top": "lying in the top row",
+    "horizontal_bottom": "lying in the bottom row",
+}
+
+
+def _describe(outcome: Outcome) -> str:
+    _, panel, stud, placement = outcome
+    return f"panel {panel} on stud {stud}, {_PLACEMENT_TEXT[placement]}"
+
+
+def question_between(first: Outcome, second: Outcome) -> str:
+    """One question that tells two commands apart, naming what they share once.
+
+    >>> question_between(("command", "500321", "500104", "vertical_middle"), ("command", "500321", "500104", "vertical_left"))
+    "Did you mean panel 500321 on stud 500104 upright with its edge on the stud's centre line, or upright with its edge on the stud's left line?"
+    """
+    _, p1, s1, l1 = first
+    _, p2, s2, l2 = second
+    if p1 == p2 and s1 == s2:
+        return f"Did you mean panel {p1} on stud {s1} {_PLACEMENT_TEXT[l1]}, or {_PLACEMENT_TEXT[l2]}?"
+    if p1 == p2 and l1 == l2:
+        return f"Did you mean panel {p1} {_PLACEMENT_TEXT[l1]} on stud {s1}, or on stud {s2}?"
+    if s1 == s2 and l1 == l2:
+        return f"Did you mean panel {p1} or panel {p2}, on stud {s1} {_PLACEMENT_TEXT[l1]}?"
+    return f"Did you mean {_describe(first)}, or {_describe(second)}?"
+
+
+def _doubtful_words(words: Sequence[str], marginals: np.ndarray, labels: Sequence[str], tags: Sequence[str],
+                    doubt: float) -> list[tuple[int, str]]:
+    """(index, second-choice tag) for every word whose chosen tag has probability below ``1 - doubt``."""
+    if marginals.size == 0:
+        return []
+    index = {label: i for i, label in enumerate(labels)}
+    out = []
+    for i, tag in enumerate(tags):
+        row = marginals[i]
+        if row[index[tag]] < 1 - doubt:
+            order = np.argsort(-row)
+            second = next(labels[j] for j in order if labels[j] != tag)
+            out.append((i, second))
+    return out
+
+
+def _confirm(outcome: Outcome, words: Sequence[str], doubtful: list[int]) -> str:
+    unsure = ", ".join(f"'{words[i]}'" for i in doubtful[:3])
+    unsure_text = f" I am not sure what {unsure} means here." if unsure else " I am not sure I understood."
+    return f"I understood {_describe(outcome)}.{unsure_text} Is that right?"
+
+
+def _mass(readings: Iterable[Reading]) -> dict[Outcome, float]:
+    mass: dict[Outcome, float] = {}
+    for r in readings:
+        mass[r.outcome] = mass.get(r.outcome, 0.0) + r.probability
+    return mass
+
+
+# --- the decision ------------------------------------------------------------------------------------------
+def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], marginals: np.ndarray,
+           labels: Sequence[str], history: ActionHistory | None = None,
+           settings: DecisionSettings = DEFAULT_SETTINGS, interpreter: Callable = im_interpret) -> Decision:
+    """Choose what to do with one instruction from the tagger's readings (module docstring, steps 1-4).
+
+    ``kbest``: tag sequences with natural-log probabilities, best first (``Tagger.predict_kbest``);
+    ``marginals``: (n_words, n_labels) tag probabilities in ``labels`` order. Nothing is recorded.
+    ``interpreter(words, tags, history)`` is the IM's ``interpret`` (a cached one when many settings
+    are compared on the same readings).
+    """
+    interpret = interpreter
+    words = list(words)
+    history = history if history is not None else ActionHistory()
+    readings = [Reading(list(tags), float(lp), interpret(words, tags, history))
+                for tags, lp in list(kbest)[: settings.k]]
+    if not readings:
+        raise ValueError("decide needs at least one tag sequence")
+    best = readings[0]
+    within = [r for r in readings if r.logprob >= best.logprob - settings.margin]
+    mass = _mass(readings)
+    rival_commands = list(dict.fromkeys(r.outcome for r in within if r.outcome[0] == "command"))
+
+    def finish(reading: Reading, action: str, note: str, refusal: Refusal | None = None) -> Decision:
+        result = Interpretation(list(words), list(reading.tags), Trace(list(reading.interpretation.trace.steps)),
+                                reading.interpretation.command if refusal is None else None,
+                                reading.interpretation.refusal if refusal is None else refusal)
+        alternatives = "; ".join(
+            f"{'command ' + _describe(r.outcome) if r.outcome[0] == 'command' else 'refused (' + r.outcome[1] + ')'}"
+            f" p={r.probability:.3f}" for r in readings[:4])
+        result.trace.add("decision", f"D {action}", True, conclusion=f"{note} [readings: {alternatives}]")
+        return Decision(words, list(reading.tags), result, mass.get(reading.outcome, 0.0), action, readings)
+
+    if best.outcome[0] == "command":
+        others = [o for o in rival_commands if o != best.outcome]
+        if others:
+            return finish(best, "ask", "two readings give different commands",
+                          Refusal("unclear", question_between(best.outcome, others[0])))
+        doubtful = _doubtful_words(words, marginals, labels, best.tags, settings.doubt)
+        changing: list[int] = []
+        variants = [[(i, second)] for i, second in doubtful] + ([doubtful] if len(doubtful) > 1 else [])
+        for variant in variants:  # each doubtful word on its own, then all of them together
+            tags = list(best.tags)
+            for i, second in variant:
+                tags[i] = second
+            if outcome_of(interpret(words, tags, history)) != best.outcome:
+                changing.extend(i for i, _ in variant if i not in changing)
+        if mass[best.outcome] < settings.act or changing:
+            why = (f"the command's readings carry p={mass[best.outcome]:.3f} < {settings.act}"
+                   if not changing else "a doubtful word changes the outcome")
+            return finish(best, "ask", why, Refusal("unclear", _confirm(best.outcome, words, changing)))
+        return finish(best, "act", f"one command, p={mass[best.outcome]:.3f}")
+
+    reason = best.outcome[1]
+    if rival_commands:
+        first = max(rival_commands, key=lambda o: mass[o])
+        chosen = next(r for r in within if r.outcome == first)
+        if len(rival_commands) > 1:
+            second = next(o for o in rival_commands if o != first)
+            return finish(chosen, "ask", "readings within the margin give different commands",
+                          Refusal("unclear", question_between(first, second)))
+        if reason == "undetermined" and mass[first] >= settings.recover:
+            return finish(chosen, "recover",
+                          f"the best reading is undetermined; the next reading within the margin gives one command, "
+                          f"p={mass[first]:.3f}")
+        if mass[first] >= settings.question:
+            message = best.interpretation.refusal.message if reason != "undetermined" else None
+            question = _confirm(first, words, [])
+            text = f"{message} Or did you mean {_describe(first)}?" if message else question
+            return finish(chosen, "ask", f"refused ({reason}), but a feasible reading has p={mass[first]:.3f}",
+                          Refusal("unclear", text))
+    return finish(best, "refuse", f"refused ({reason})")
+
+
+def decide_tags(words: Sequence[str], tags: Sequence[str], labels: Sequence[str],
+                history: ActionHistory | None = None) -> Decision:
+    """The decision for tags known for certain (gold tags): one reading with probability 1."""
+    marginals = np.zeros((len(tags), len(labels)))
+    index = {label: i for i, label in enumerate(labels)}
+    for i, tag in enumerate(tags):
+        marginals[i, index.get(tag, index["O"])] = 1.0
+    return decide(words, [(list(tags), 0.0)], marginals, labels, history)
+
+
+# --- whole episodes --------------------------------------------------------------------------------------
+def decide_episode(instructions: Sequence[Sequence[str]], tagger, settings: DecisionSettings = DEFAULT_SETTINGS,
+                   history: ActionHistory | None = None) -> list[Decision]:
+    """Decide each instruction of an episode in order, recording the commands acted on in ``history``."""
+    history = history if history is not None else ActionHistory()
+    confidences = tagger.predict_confidence([list(w) for w in instructions], k=settings.k) if instructions else []
+    decisions = []
+    for words, conf in zip(instructions, confidences):
+        decision = decide(words, conf.kbest, conf.marginals, tagger.labels, history, settings)
+        if decision.acted:
+            history.record(decision.command)
+        decisions.append(decision)
+    return decisions
+
+
+# --- measuring: accuracy, wrong actions, over-refusals, risk against coverage ------------------------------
+def step_outcome(decision_outcome: Outcome, expected: Mapping) -> str:
+    """``right`` (the intended command, or a refusal or question where a refusal was expected),
+    ``wrong_action`` (the robot acted, and not as intended) or ``over_refusal`` (a refusal or question
+    where a command was expected)."""
+    refusal_expected = expected.get("refusal") is not None
+    if decision_outcome[0] == "refusal":
+        return "right" if refusal_expected else "over_refusal"
+    if refusal_expected:
+        return "wrong_action"
+    command = {"drywall_id": decision_outcome[1], "stud_id": decision_outcome[2], "placement": decision_outcome[3]}
+    return "right" if all(expected[k] == v for k, v in command.items()) else "wrong_action"
+
+
+def decide_rows(rows: Sequence[Mapping], tagger, settings: DecisionSettings = DEFAULT_SETTINGS,
+                confidences=None) -> list[Decision]:
+    """One decision per corpus row, each in its own context (the accepted commands before it in its episode).
+
+    ``confidences`` (``tagger.predict_confidence`` of the rows' words) may be given to decide the same
+    rows under several settings without tagging them again; ``tagger`` then only gives its ``labels``.
+    """
+    if confidences is None:
+        confidences = tagger.predict_confidence([list(r["words"]) for r in rows], k=settings.k)
+    return [decide(r["words"], c.kbest, c.marginals, tagger.labels,
+                   ActionHistory.from_commands(r["context"]["history"]), settings)
+            for r, c in zip(rows, confidences)]
+
+
+def decision_scores(rows: Sequence[Mapping], decisions: Sequence[Decision]) -> dict[str, float]:
+    """``accuracy``, ``wrong_action_rate``, ``over_refusal_rate`` (shares of the rows, adding up to 1) and
+    ``coverage`` (the share acted on)."""
+    if len(rows) != len(decisions) or not rows:
+        raise ValueError(f"{len(rows)} rows but {len(decisions)} decisions")
+    outcomes = [step_outcome(outcome_of(d.interpretation), r["expected"]) for r, d in zip(rows, decisions)]
+    n = len(outcomes)
+    return {"accuracy": outcomes.count("right") / n, "wrong_action_rate": outcomes.count("wrong_action") / n,
+            "over_refusal_rate": outcomes.count("over_refusal") / n,
+            "coverage": sum(d.acted for d in decisions) / n}
+
+
+def risk_coverage(rows: Sequence[Mapping], decisions: Sequence[Decision]) -> "pd.DataFrame":
+    """Selective prediction: as the threshold on the acted command's probability rises, the share of
+    instructions acted on (coverage) and the wrong actions among all instructions (risk).
+
+    ``decisions`` should be made with ``act=0`` (every determined, unrivalled command acted on), so
+    that each threshold keeps the actions whose ``confidence`` reaches it. One row per threshold.
+    """
+    import pandas as pd
+
+    acted = sorted(((d.confidence, step_outcome(outcome_of(d.interpretation), r["expected"]) == "wrong_action")
+                    for r, d in zip(rows, decisions) if d.acted), reverse=True)
+    n = len(rows)
+    out, wrong = [], 0
+    for i, (confidence, is_wrong) in enumerate(acted, start=1):
+        wrong += is_wrong
+        out.append({"threshold": confidence, "coverage": i / n, "wrong_action_rate": wrong / n,
+                    "risk_among_acted": wrong / i})
+    frame = pd.DataFrame(out, columns=["threshold", "coverage", "wrong_action_rate", "risk_among_acted"])
+    return frame.groupby("threshold", sort=False).last().reset_index()

@@ -1,0 +1,175 @@
+"""The decision layer (drywall_lab/decision.py): IM-aware decoding, a question instead of a guess."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from drywall_lab.corpus.markup import parse
+from drywall_lab.corpus.tags import TAGS
+from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, decide, decide_episode, decide_rows,
+                                  decide_tags, decision_scores, outcome_of, question_between, risk_coverage,
+                                  step_outcome)
+from drywall_lab.im import ActionHistory, interpret
+from drywall_lab.nlu import default_tagger
+from drywall_lab.splits import split_rows
+
+
+def _wt(markup: str) -> tuple[list[str], list[str]]:
+    tokens = [t for t in parse(markup) if t.is_word]
+    return [t.word for t in tokens], [t.tag for t in tokens]
+
+
+def _marginals(tags_and_p: list[tuple[str, float, str]]) -> np.ndarray:
+    """One row per word: (chosen tag, its probability, the second tag taking the rest)."""
+    m = np.zeros((len(tags_and_p), len(TAGS)))
+    for i, (tag, p, second) in enumerate(tags_and_p):
+        m[i, TAGS.index(tag)] = p
+        m[i, TAGS.index(second)] += 1 - p
+    return m
+
+
+def _sure(tags: list[str]) -> np.ndarray:
+    return _marginals([(t, 1.0, "O" if t != "O" else "dim") for t in tags])
+
+
+CENTRE = "the 2/width by 8/length panel on stud 500104/ID_stud on the centre/Vr_md line/Vr_md"
+
+
+def test_one_sure_command_is_acted_on():
+    words, tags = _wt(CENTRE)
+    d = decide(words, [(tags, math.log(0.95))], _sure(tags), TAGS)
+    assert d.action == "act" and d.command.as_contract() == {
+        "drywall_id": "500321", "stud_id": "500104", "placement": "vertical_middle"}
+    assert d.interpretation.trace.steps[-1].stage == "decision"
+
+
+def test_two_commands_within_the_margin_give_one_question():
+    words, tags = _wt(CENTRE)
+    left = ["O" if t == "Vr_md" else t for t in tags]
+    d = decide(words, [(tags, math.log(0.55)), (left, math.log(0.40))], _sure(tags), TAGS)
+    assert d.action == "ask" and not d.acted
+    assert d.refusal.reason == "unclear"
+    assert d.refusal.message == ("Did you mean panel 500321 on stud 500104 upright with its edge on the stud's centre "
+                                 "line, or upright with its edge on the stud's left line?")
+    assert "two readings give different commands" in str(d.interpretation.trace)
+
+
+def test_a_rival_outside_the_margin_does_not_stop_the_action():
+    words, tags = _wt(CENTRE)
+    left = ["O" if t == "Vr_md" else t for t in tags]
+    settings = DecisionSettings(margin=2.0, act=0.5)
+    d = decide(words, [(tags, math.log(0.9)), (left, math.log(0.01))], _sure(tags), TAGS, settings=settings)
+    assert d.action == "act"
+
+
+def test_a_command_with_too_little_probability_is_a_question_saying_what_was_understood():
+    words, tags = _wt(CENTRE)
+    d = decide(words, [(tags, math.log(0.3))], _sure(tags), TAGS, settings=DecisionSettings(act=0.6))
+    assert d.refusal.reason == "unclear"
+    assert d.refusal.message.startswith("I understood panel 500321 on stud 500104") and d.refusal.message.endswith("?")
+
+
+def test_a_doubtful_word_that_changes_the_command_is_asked_about():
+    words, tags = _wt(CENTRE)
+    doubt = [(t, 1.0, "O") if w not in ("centre", "line") else ("Vr_md", 0.6, "O") for w, t in zip(words, tags)]
+    d = decide(words, [(tags, math.log(0.9))], _marginals(doubt), TAGS, settings=DecisionSettings(act=0.5, doubt=0.3))
+    assert d.action == "ask" and "'centre', 'line'" in d.refusal.message
+    # one doubtful word of the two is no reason to ask: "line" alone still says the centre line
+    doubt = [(t, 1.0, "O") if w != "centre" else ("Vr_md", 0.6, "O") for w, t in zip(words, tags)]
+    d = decide(words, [(tags, math.log(0.9))], _marginals(doubt), TAGS, settings=DecisionSettings(act=0.5, doubt=0.3))
+    assert d.action == "act"
+    # a doubtful word whose second choice changes nothing is no reason to ask
+    doubt = [(t, 1.0, "O") if w != "panel" else ("O", 0.6, "dim") for w, t in zip(words, tags)]
+    d = decide(words, [(tags, math.log(0.9))], _marginals(doubt), TAGS, settings=DecisionSettings(act=0.5, doubt=0.3))
+    assert d.action == "act"
+
+
+def test_an_undetermined_best_reading_recovers_the_one_command_within_the_margin():
+    words, tags = _wt("the 2/width by 8/length panel two/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of 500104/St_loc2")
+    missed = ["O" if t == "St_loc2" else t for t in tags]  # the anchor missed: undetermined
+    d = decide(words, [(missed, math.log(0.45)), (tags, math.log(0.40))], _sure(missed), TAGS,
+               settings=DecisionSettings(recover=0.3))
+    assert d.action == "recover" and d.command.stud_id == "500106"
+    assert d.tags == tags
+    d = decide(words, [(missed, math.log(0.45)), (tags, math.log(0.20))], _sure(missed), TAGS,
+               settings=DecisionSettings(recover=0.3, question=0.1))
+    assert d.action == "ask" and d.refusal.reason == "unclear"
+
+
+def test_a_site_refusal_stays_a_refusal_and_changes_nothing():
+    history = ActionHistory()
+    history.record(interpret(*_wt("panel 500320/ID_wall on stud 500104/ID_stud")).command)
+    before = history.frame.copy()
+    words, tags = _wt("panel 500320/ID_wall on stud 500100/ID_stud")
+    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS, history)
+    assert d.action == "refuse" and d.refusal.reason == "already_installed"
+    pd.testing.assert_frame_equal(history.frame, before)
+
+
+def test_question_between_names_what_differs():
+    assert question_between(("command", "500321", "500104", "vertical_left"),
+                            ("command", "500321", "500105", "vertical_left")).endswith("on stud 500104, or on stud 500105?")
+    assert question_between(("command", "500321", "500104", "vertical_left"),
+                            ("command", "500320", "500104", "vertical_left")).startswith("Did you mean panel 500321 or panel 500320")
+
+
+@pytest.mark.parametrize("split", ["validation", "test", "novel", "field-validation", "field-test", "field-novel",
+                                   "field-set"])
+def test_gold_tags_through_the_layer_give_every_intended_outcome(split):
+    """The layer never changes a confident right answer: with gold tags acc_task stays 1.0."""
+    rows = split_rows(split)
+    for row in rows:
+        d = decide_tags(row["words"], row["tags"], TAGS, ActionHistory.from_commands(row["context"]["history"]))
+        assert d.interpretation.outcome() == dict(row["expected"]), row["id"]
+
+
+def test_best_path_is_the_paper_pipeline():
+    tagger = default_tagger()
+    rows = split_rows("novel")[:60]
+    best = decide_rows(rows, tagger, BEST_PATH)
+    predicted = tagger.predict([r["words"] for r in rows])
+    for row, d, tags in zip(rows, best, predicted):
+        assert d.tags == tags
+        assert outcome_of(d.interpretation) == outcome_of(
+            interpret(row["words"], tags, ActionHistory.from_commands(row["context"]["history"])))
+
+
+def test_decide_episode_records_only_what_it_acts_on():
+    tagger = default_tagger()
+    texts = ["Put panel 500320 on stud 500100", "Put panel 500320 on stud 500104", "the same size on stud 500104"]
+    history = ActionHistory()
+    decisions = decide_episode([t.split() for t in texts], tagger, DEFAULT_SETTINGS, history)
+    assert [d.acted for d in decisions][:2] == [True, False]
+    assert len(history) == sum(d.acted for d in decisions)
+
+
+def test_scores_and_risk_coverage():
+    command = {"drywall_id": "500320", "stud_id": "500100", "placement": "vertical_left", "refusal": None}
+    refusal = {"drywall_id": None, "stud_id": None, "placement": None, "refusal": "overlap"}
+    assert step_outcome(("command", "500320", "500100", "vertical_left"), command) == "right"
+    assert step_outcome(("command", "500320", "500101", "vertical_left"), command) == "wrong_action"
+    assert step_outcome(("refusal", "unclear"), command) == "over_refusal"
+    assert step_outcome(("refusal", "unclear"), refusal) == "right"
+    assert step_outcome(("command", "500320", "500100", "vertical_left"), refusal) == "wrong_action"
+    words, tags = _wt("panel 500320/ID_wall on stud 500100/ID_stud")
+    wrong_words, wrong_tags = _wt("panel 500320/ID_wall on stud 500101/ID_stud")
+    rows = [{"expected": command}] * 3
+    ds = [decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS, settings=DecisionSettings(act=0.0)),
+          decide(wrong_words, [(wrong_tags, math.log(0.5))], _sure(wrong_tags), TAGS, settings=DecisionSettings(act=0.0)),
+          decide([], [([], 0.0)], np.zeros((0, len(TAGS))), TAGS)]
+    scores = decision_scores(rows, ds)
+    assert scores == pytest.approx({"accuracy": 1 / 3, "wrong_action_rate": 1 / 3, "over_refusal_rate": 1 / 3,
+                                    "coverage": 2 / 3})
+    curve = risk_coverage(rows, ds)
+    assert list(curve["coverage"]) == pytest.approx([1 / 3, 2 / 3])
+    assert list(curve["wrong_action_rate"]) == pytest.approx([0, 1 / 3])  # the sure one first, then the wrong one
+
+
+def test_bad_settings_are_refused():
+    with pytest.raises(ValueError, match="act must be between 0 and 1"):
+        DecisionSettings(act=1.5)
+    with pytest.raises(ValueError, match="k must be at least 1"):
+        DecisionSettings(k=0)

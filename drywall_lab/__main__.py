@@ -213,12 +213,64 @@ def _cmd_run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    """The batch contract carried through the simulated robot: the ``run`` fields plus ``placement`` per
+    instruction (``drywall_lab.rc.batch``), and with ``--html`` one self-contained animation of all episodes."""
+    import json
+
+    from drywall_lab.pipeline import load_tagger_option, read_episodes
+    from drywall_lab.rc.batch import simulate_episodes, simulation_records
+    from drywall_lab.rc.settings import record_fps
+
+    html = _html_output(args.html)
+    episodes = read_episodes(args.episodes)
+    tagger = load_tagger_option(args.tagger)
+    ascii_only = (getattr(sys.stdout, "encoding", None) or "").lower().replace("-", "").replace("_", "") != "utf8"
+    recordings, model = [], None
+    for episode, run in zip(episodes, simulate_episodes(episodes, tagger, record_fps() if html else None)):
+        for record in simulation_records(run, episode["id"]):
+            sys.stdout.write(json.dumps(record, ensure_ascii=ascii_only) + "\n")
+        sys.stdout.flush()
+        if html is not None:
+            recordings.append(run.cell.recording)
+            model = run.cell.scene.model
+    if html is not None:
+        from drywall_lab import viz
+
+        if model is None:  # no episodes: the site as every episode starts
+            from drywall_lab.rc import RobotCell
+
+            cell = RobotCell(record_fps=record_fps())
+            recordings, model = [cell.recording], cell.scene.model
+        summary = viz.save_animation(recordings, model, html)
+        print(f"animation of {len(episodes)} episode(s): {html} ({summary})", file=sys.stderr)
+    return 0
+
+
+def _html_output(option: str | None) -> Path | None:
+    """The ``--html`` file, checked before anything is simulated: not a folder, its folder creatable."""
+    if option is None:
+        return None
+    path = Path(option)
+    if path.is_dir():
+        raise ValueError(f"--html {path} is a folder, not an HTML file to write")
+    folder = next(p for p in path.absolute().parents if p.exists())
+    if not folder.is_dir():
+        raise ValueError(f"--html {path} cannot be created: {folder} is a file, not a folder")
+    return path
+
+
 def _cmd_experiment(args: argparse.Namespace) -> int:
-    """The paper's NLU study (Tables 3-5, Fig. 13) on this corpus."""
+    """The paper's NLU study (Tables 3-5, Fig. 13) on this corpus, or the field ablation (issue 11)."""
+    if args.study == "field":
+        from drywall_lab.nlu.field_study import FieldStudySettings, run_field_study
+
+        run_field_study(args.out or "results/field", FieldStudySettings.fast() if args.fast else FieldStudySettings.full())
+        return 0
     from drywall_lab.nlu.experiments import ExperimentSettings, run_paper_experiment
 
     settings = ExperimentSettings.fast() if args.fast else ExperimentSettings.paper()
-    run_paper_experiment(args.out, settings)
+    run_paper_experiment(args.out or "results/paper", settings)
     return 0
 
 
@@ -248,9 +300,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_tagger_commands(sub)  # train, evaluate (drywall_lab/nlu/cli.py)
 
-    p = sub.add_parser("experiment", help="the paper's NLU study: LSTM/BERT-M1..M4, BERT-C1..C4, Tables 3-5, Fig. 13")
-    p.add_argument("study", choices=["paper"])
-    p.add_argument("--out", default="results/paper", help="output folder (default results/paper)")
+    p = sub.add_parser("experiment", help="paper: the paper's NLU study (LSTM/BERT-M1..M4, BERT-C1..C4, Tables 3-5, "
+                                          "Fig. 13); field: the ablation from the corpus to the field")
+    p.add_argument("study", choices=["paper", "field"])
+    p.add_argument("--out", default=None, help="output folder (default results/paper or results/field)")
     p.add_argument("--fast", action="store_true", help="an eighth of the data and 3 / 1 epochs: a quick check, not the study")
     p.set_defaults(func=_cmd_experiment)
 
@@ -269,6 +322,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("episodes", help='a JSON-lines file, one {"id": ..., "instructions": [...]} per line')
     p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
     p.set_defaults(func=_cmd_run)
+
+    p = sub.add_parser("simulate", help="episodes through NLU, IM and the simulated robot: the run fields plus "
+                                        "each placement's outcome; --html writes an animation")
+    p.add_argument("episodes", help='a JSON-lines file, one {"id": ..., "instructions": [...]} per line')
+    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
+    p.add_argument("--html", default=None,
+                   help="write one self-contained HTML animation of all the episodes here (plays offline)")
+    p.set_defaults(func=_cmd_simulate)
 
     p = sub.add_parser("demo", help="headless walk-through of the course material")
     p.set_defaults(func=_cmd_demo)

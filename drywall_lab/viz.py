@@ -4,22 +4,28 @@ and matplotlib drawings as the quick fallback.
 The paper shows its robot in Gazebo (Figs. 16-18). Here the scene is drawn from the MuJoCo
 model's own geoms (boxes, cylinders, the floor plane), so there is nothing to keep in step:
 
-- ``MeshcatScene``: the geoms in meshcat, grouped by body. ``update(data)`` moves the bodies
-  to the simulation's state (live in JupyterLab with ``live()``); ``animate(recording)``
-  turns a ``Recording`` into a meshcat animation; ``html()`` / ``embed()`` / ``save_html()``
-  give the scene and its animation as one self-contained HTML page that plays without a server.
-  No OpenGL is needed: the browser draws it.
+- ``MeshcatScene``: the geoms in meshcat, grouped by body. ``animate(recording)`` turns a
+  ``Recording`` into a meshcat animation; ``html()`` / ``save_html()`` give the scene and its
+  animation as one self-contained HTML page that plays without a server (``save_animation`` does it
+  for whole episodes, ``show_html`` shows the saved page in a notebook). The scene is kept in this
+  process (``StaticWindow``): no server is started unless ``live=True`` asks for meshcat's own, to
+  watch the simulation live in JupyterLab (``live()``, ``update(data)``). No OpenGL is needed: the
+  browser draws it.
 - ``draw_elevation``: a matplotlib elevation (or plan) of the same geoms at one moment;
-  ``draw_film``: a row of such drawings through a recording; ``plot_joint_trajectories``:
-  set points against measured joint values for one placement.
+  ``draw_film``: a grid of such drawings through a recording, ``draw_placement_film`` and
+  ``draw_episode_film`` choose the moments (stage ends, one per placement);
+  ``plot_joint_trajectories``: set points against measured joint values for one placement.
 
 All meshcat code lives in this module, so it can be replaced without touching the simulation.
 """
 from __future__ import annotations
 
+import base64
 import html as html_lib
+import os
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 import matplotlib.pyplot as plt
 import mujoco
@@ -27,6 +33,10 @@ import numpy as np
 from matplotlib.patches import Polygon
 
 from drywall_lab.rc.recording import JointTrace, Recording
+
+if TYPE_CHECKING:
+    from drywall_lab.rc.episode import EpisodeRun
+    from drywall_lab.rc.placement import PlacementResult
 
 ROOT = "drywall"
 #: Keyframes are dropped while linear interpolation between the kept ones stays this close.
@@ -98,19 +108,137 @@ def visible_geoms(model: mujoco.MjModel) -> list[int]:
 
 
 # --- meshcat -----------------------------------------------------------------------------------------
+_STATIC_PAGE = """<!DOCTYPE html>
+<html>
+    <head> <meta charset=utf-8> <title>{title}</title> </head>
+    <body>
+        <div id="meshcat-pane">
+        </div>
+        <script>
+{viewer}
+        </script>
+        <script>
+            var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"));
+{commands}
+        </script>
+        <style>
+            body {{margin: 0; }}
+            #meshcat-pane {{
+                width: 100vw;
+                height: 100vh;
+                overflow: hidden;
+            }}
+        </style>
+    </body>
+</html>
+"""
+
+
+class StaticWindow:
+    """Meshcat's viewer window kept in this process: no server, no port, nothing printed.
+
+    ``meshcat.Visualizer(window=StaticWindow())`` takes every drawing command as usual; the window keeps
+    the scene tree the way meshcat's own server does (``meshcat.servers.tree``: the latest object,
+    properties, transform and animation of each path), and ``get_scene()`` writes the same
+    self-contained page the server's static export writes: meshcat's viewer code inline, then every
+    command as a ``data:`` URL.
+    """
+
+    server_proc = None
+
+    def __init__(self, title: str = "drywall-lab") -> None:
+        from meshcat.servers.tree import SceneTree
+
+        self.tree = SceneTree()
+        self.title = title
+
+    def send(self, command) -> None:
+        import umsgpack
+        from meshcat.servers.tree import SceneTree, find_node
+
+        data = command.lower()
+        kind = data["type"]
+        path = [part for part in data.get("path", "").split("/") if part]
+        packed = umsgpack.packb(data)
+        if kind == "delete":
+            if not path:
+                self.tree = SceneTree()
+            else:
+                parent = find_node(self.tree, path[:-1])
+                parent.pop(path[-1], None)
+            return
+        node = find_node(self.tree, path)
+        if kind == "set_object":
+            node.object, node.properties = packed, []
+        elif kind == "set_transform":
+            node.transform = packed
+        elif kind == "set_property":
+            node.properties.append(packed)
+        elif kind == "set_animation":
+            node.animation = packed
+        else:
+            raise ValueError(f"a static meshcat scene cannot take a {kind!r} command")
+
+    def commands(self) -> list[bytes]:
+        """The packed commands that rebuild the scene, in the order meshcat's server replays them."""
+        from meshcat.servers.tree import walk
+
+        packed: list[bytes] = []
+        for node in walk(self.tree):
+            packed += ([node.object] if node.object is not None else []) + list(node.properties)
+            packed += [x for x in (node.transform, node.animation) if x is not None]
+        return packed
+
+    def get_scene(self) -> str:
+        """The scene as one self-contained HTML page (meshcat's static export)."""
+        import meshcat
+
+        viewer = (Path(meshcat.__file__).parent / "viewer" / "dist" / "main.min.js").read_text(encoding="utf-8")
+        commands = "".join(
+            f'fetch("data:application/octet-binary;base64,{base64.b64encode(c).decode("ascii")}")\n'
+            "    .then(res => res.arrayBuffer())\n"
+            "    .then(buffer => viewer.handle_command_bytearray(new Uint8Array(buffer)));\n"
+            for c in self.commands())
+        return _STATIC_PAGE.format(title=html_lib.escape(self.title), viewer=viewer, commands=commands)
+
+
+@dataclass(frozen=True)
+class AnimationSummary:
+    """What ``MeshcatScene.animate`` sent: ``frames`` recorded frames of ``bodies`` moving bodies, of whose
+    ``frames * bodies`` poses ``keyframes`` were kept (the rest lie on straight lines between them)."""
+
+    frames: int
+    bodies: int
+    keyframes: int
+
+    @property
+    def poses(self) -> int:
+        return self.frames * self.bodies
+
+    def __str__(self) -> str:
+        share = self.keyframes / self.poses if self.poses else 0.0
+        return (f"{self.frames} recorded frames x {self.bodies} moving bodies = {self.poses} body poses, "
+                f"{self.keyframes} of them kept as keyframes ({share:.0%})")
+
+
 class MeshcatScene:
     """The MuJoCo model's geoms in a meshcat viewer, one node per body (see the module's docstring).
 
-    Creating one starts meshcat's server process on this machine's loopback (``meshcat.Visualizer``);
-    ``close()`` stops it.
+    By default the scene is kept in this process (``StaticWindow``) for the self-contained HTML export.
+    ``live=True`` starts meshcat's server process on this machine's loopback instead, for ``live()``
+    and ``update()`` in JupyterLab; ``close()`` stops it.
     """
 
-    def __init__(self, model: mujoco.MjModel, visualizer=None) -> None:
+    def __init__(self, model: mujoco.MjModel, visualizer=None, live: bool = False) -> None:
         import meshcat
 
         self.model = model
-        self.vis = visualizer if visualizer is not None else meshcat.Visualizer()
-        self._own_server = visualizer is None
+        if visualizer is None:
+            visualizer = meshcat.Visualizer() if live else meshcat.Visualizer(window=StaticWindow())
+            self._own_server = live
+        else:
+            self._own_server = False
+        self.vis = visualizer
         self.root = self.vis[ROOT]
         self.root.delete()
         self.moving_bodies = sorted({int(model.geom_bodyid[g]) for g in visible_geoms(model)} - {0})
@@ -153,14 +281,16 @@ class MeshcatScene:
 
     def live(self, height: int = 480):
         """The viewer in a notebook cell, connected to the server (for JupyterLab on this machine)."""
+        if isinstance(self.vis.window, StaticWindow):
+            raise ValueError("this scene has no server to watch live: build it with MeshcatScene(model, live=True)")
         return self.vis.jupyter_cell(height=height)
 
     # animation
     def animate(self, recording: Recording | Sequence[Recording], repetitions: int = 1, speed: float = 1.0,
                 position_tolerance: float = KEY_POSITION_TOLERANCE,
-                angle_tolerance_deg: float = KEY_ANGLE_TOLERANCE_DEG) -> int:
-        """Send the recording (or several, played one after another) as a meshcat animation; returns
-        the number of keyframes kept.
+                angle_tolerance_deg: float = KEY_ANGLE_TOLERANCE_DEG) -> AnimationSummary:
+        """Send the recording (or several, played one after another) as a meshcat animation; returns how
+        many frames were recorded and how many body poses were kept as keyframes (``AnimationSummary``).
 
         Frames are thinned: a body's frame is kept only where linear interpolation between the kept
         frames would be off by more than ``position_tolerance`` (m) or ``angle_tolerance_deg``.
@@ -178,10 +308,11 @@ class MeshcatScene:
         positions = np.array(recording.positions)
         quaternions = _continuous(np.array(recording.quaternions))
         index = {b: i for i, b in enumerate(recording.body_ids)}
-        kept_total = 0
+        kept_total, bodies = 0, 0
         for b in self.moving_bodies:
             if b not in index:
                 continue
+            bodies += 1
             i = index[b]
             keep = keyframes(times, positions[:, i], quaternions[:, i], position_tolerance, angle_tolerance_deg)
             kept_total += len(keep)
@@ -190,7 +321,7 @@ class MeshcatScene:
                 with anim.at_frame(self.root, int(frames[k])) as frame:
                     frame[name].set_transform(_transform(positions[k, i], quaternions[k, i]))
         self.vis.set_animation(anim, play=True, repetitions=repetitions)
-        return kept_total
+        return AnimationSummary(len(recording), bodies, kept_total)
 
     # static export
     def html(self) -> str:
@@ -203,25 +334,43 @@ class MeshcatScene:
         path.write_text(self.html(), encoding="utf-8")
         return path
 
-    def embed(self, height: int = 460):
-        """The static page in a notebook output (an iframe with the page inline): plays without a server."""
-        from IPython.display import HTML
-
-        return HTML(iframe_html(self.html(), height))
-
     def close(self) -> None:
-        """Stop the meshcat server this scene started."""
+        """Stop the meshcat server this scene started (``live=True``); nothing to do otherwise."""
         proc = getattr(self.vis.window, "server_proc", None)
         if self._own_server and proc is not None and proc.poll() is None:
             proc.kill()
             proc.wait()
 
 
-def iframe_html(page: str, height: int = 460) -> str:
-    """An iframe that holds ``page`` inline (``srcdoc``), resizable."""
-    return (f'<div style="height: {height}px; width: 100%; overflow: hidden; resize: both">'
-            f'<iframe srcdoc="{html_lib.escape(page, quote=True)}" style="width: 100%; height: 100%; border: none">'
-            f"</iframe></div>")
+def save_animation(recordings: Recording | Sequence[Recording], model: mujoco.MjModel, path: Path | str,
+                   speed: float = 4.0, position_tolerance: float = 0.005,
+                   angle_tolerance_deg: float = 1.0) -> AnimationSummary:
+    """The recordings (several are played one after another) as one self-contained HTML animation in
+    ``path`` (its folder created), played ``speed`` times faster than real time: no server, no network.
+
+    The default keyframe tolerances (5 mm, 1 deg) are ample for a film played at 4x; the simulation's
+    own errors are measured on the panels, not on the film.
+    """
+    scene = MeshcatScene(model)
+    try:
+        summary = scene.animate(recordings, speed=speed, position_tolerance=position_tolerance,
+                                angle_tolerance_deg=angle_tolerance_deg)
+        scene.save_html(path)
+    finally:
+        scene.close()
+    return summary
+
+
+def show_html(path: Path | str, height: int = 480):
+    """A saved page (``save_animation``) shown in a notebook: an IFrame pointing at the file, relative to the
+    notebook's folder, so the notebook itself stays small. JupyterLab serves the file beside the notebook."""
+    from IPython.display import IFrame
+
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no page at {path}: write it with save_animation first")
+    return IFrame(Path(os.path.relpath(path.resolve(), Path.cwd().resolve())).as_posix(), width="100%",
+                  height=height)
 
 
 def join_recordings(recordings: Sequence[Recording]) -> Recording:
@@ -370,27 +519,110 @@ def draw_film(model: mujoco.MjModel, recording: Recording, times: list[float], t
     return fig
 
 
+def draw_history_and_wall(run: EpisodeRun, width: float = 15.0) -> plt.Figure:
+    """Side by side: the wall as the episode's action history records it, and the simulated wall as the robot
+    left it (they agree while every placement succeeds)."""
+    from drywall_lab.plots import draw_wall
+
+    fig, (recorded, simulated) = plt.subplots(1, 2, figsize=(width, 3.6))
+    draw_wall(run.history.state, recorded, "What IM recorded (the action history)")
+    draw_elevation(run.cell.scene.model, run.cell.scene.data, simulated, "front", "What the simulated robot built")
+    fig.tight_layout()
+    return fig
+
+
+def plot_placement_errors(results: Sequence[PlacementResult], width: float = 11.0) -> plt.Figure:
+    """Each placement's position and angle error as bars, with the project's tolerances as dashed lines."""
+    from drywall_lab.rc.placement import ANGLE_TOLERANCE_DEG, POSITION_TOLERANCE
+
+    labels = [f"{r.command.drywall_id} {r.command.placement.value}" for r in results]
+    fig, (pos, ang) = plt.subplots(1, 2, figsize=(width, 0.5 + 0.45 * len(results)), sharey=True)
+    pos.barh(labels, [r.position_error_mm for r in results], color="C0")
+    pos.axvline(POSITION_TOLERANCE * 1000, color="C3", ls="--", label="tolerance")
+    ang.barh(labels, [r.angle_error_deg for r in results], color="C1")
+    ang.axvline(ANGLE_TOLERANCE_DEG, color="C3", ls="--", label="tolerance")
+    pos.set_xlabel("position error (mm)")
+    ang.set_xlabel("angle error (deg)")
+    pos.invert_yaxis()
+    pos.legend(loc="lower right", fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+#: The stages whose ends ``draw_placement_film`` shows: on the pad, tilted up, swung round, turned, seated,
+#: stepped back.
+FILM_STAGES = ("descend", "tilt", "swing", "turn", "seat", "retreat")
+
+
+def draw_placement_film(model: mujoco.MjModel, recording: Recording, result: PlacementResult,
+                        stages: Sequence[str] = FILM_STAGES, view: str = "front", ncols: int = 3,
+                        width: float = 15.0) -> plt.Figure:
+    """One placement as a film strip: the recorded scene at the end of each of ``stages`` it went through."""
+    ends: dict[str, float] = {}
+    for name, _, end in result.trace.stages:
+        if name in stages and name not in ends:
+            ends[name] = end
+    chosen = [name for name in stages if name in ends]
+    if not chosen:
+        raise ValueError(f"the placement went through none of the stages {', '.join(stages)}")
+    times = [result.sim_start + ends[name] for name in chosen]
+    titles = [f"end of {name}, t = {ends[name]:.0f} s" for name in chosen]
+    return draw_film(model, recording, times, titles, view, ncols, width)
+
+
+def draw_episode_film(run: EpisodeRun, stage: str = "approach", view: str = "front", ncols: int = 3,
+                      width: float = 15.0) -> plt.Figure:
+    """An episode as a film strip: each placement at the end of ``stage`` (the panel at the wall, about to be
+    set; the middle of the placement if it never got there), then the wall as the robot left it."""
+    recording = run.cell.recording
+    if recording is None or len(recording) == 0:
+        raise ValueError("the episode was not recorded: simulate it with record_fps")
+    times, titles = [], []
+    for step in run.steps:
+        r = step.result
+        if r is None:
+            continue
+        ends = [end for name, _, end in r.trace.stages if name == stage]
+        times.append(r.sim_start + (ends[0] if ends else r.sim_time / 2))
+        titles.append(f"step {step.step}: {r.command.drywall_id} to {r.command.stud_id}"
+                      + ("" if r.success else f" ({step.status})"))
+    times.append(recording.times[-1])
+    titles.append(f"{run.episode_id}: the wall at the end")
+    return draw_film(run.cell.scene.model, recording, times, titles, view, ncols, width)
+
+
 def plot_joint_trajectories(trace: JointTrace, title: str = "", unit_degrees: bool = True) -> plt.Figure:
-    """Each joint's set point and measured value over one placement, with the stages shaded."""
+    """Each joint over one placement, stages shaded: on the left the measured value (solid) with the set point
+    drawn over it (dashed), on the right the tracking error, measured minus set point (mm for the rail, deg or
+    rad for the arm), which is far too small to see as a gap between the two curves on the left."""
     from drywall_lab.rc.robot import JOINTS
 
     q, q_set = np.array(trace.q), np.array(trace.q_set)
     t = np.asarray(trace.times)
-    fig, axes = plt.subplots(len(JOINTS), 1, figsize=(11, 1.45 * len(JOINTS)), sharex=True)
-    for j, (ax, name) in enumerate(zip(axes, JOINTS)):
+    fig, axes = plt.subplots(len(JOINTS), 2, figsize=(13, 1.45 * len(JOINTS)), sharex=True,
+                             gridspec_kw={"width_ratios": (3, 2)})
+    for j, name in enumerate(JOINTS):
+        ax, err_ax = axes[j]
         scale, unit = (1.0, "m") if j == 0 else ((np.degrees(1.0), "deg") if unit_degrees else (1.0, "rad"))
-        ax.plot(t, q_set[:, j] * scale, color="0.6", lw=2.5, label="set point")
-        ax.plot(t, q[:, j] * scale, color="C1", lw=1.0, label="measured")
+        err_scale, err_unit = (1000.0, "mm") if j == 0 else (scale, unit)
+        ax.plot(t, q[:, j] * scale, color="C1", lw=2.6, alpha=0.75, label="measured")
+        ax.plot(t, q_set[:, j] * scale, color="k", lw=1.0, ls=(0, (4, 3)), label="set point")
+        err_ax.plot(t, (q[:, j] - q_set[:, j]) * err_scale, color="C3", lw=0.9)
+        err_ax.axhline(0.0, color="0.5", lw=0.6)
         ax.set_ylabel(f"{name} ({unit})", fontsize=8)
-        for k, (stage, a, b) in enumerate(trace.stages):
-            if k % 2 == 0:
-                ax.axvspan(a, b, color="0.93", lw=0)
-    for stage, a, b in trace.stages:
-        if b - a > 1.2:
-            axes[0].text((a + b) / 2, 1.02, stage, transform=axes[0].get_xaxis_transform(), ha="center",
-                         va="bottom", fontsize=7, rotation=30)
-    axes[0].legend(loc="upper right", fontsize=7)
-    axes[-1].set_xlabel("time (s, simulated)")
+        err_ax.set_ylabel(f"error ({err_unit})", fontsize=8)
+        for a in (ax, err_ax):
+            for k, (stage, start, end) in enumerate(trace.stages):
+                if k % 2 == 0:
+                    a.axvspan(start, end, color="0.93", lw=0)
+    for stage, start, end in trace.stages:
+        if end - start > 1.2:
+            axes[0, 0].text((start + end) / 2, 1.02, stage, transform=axes[0, 0].get_xaxis_transform(), ha="center",
+                            va="bottom", fontsize=7, rotation=30)
+    axes[0, 0].legend(loc="upper right", fontsize=7)
+    axes[0, 1].set_title("measured - set point", fontsize=9)
+    for a in axes[-1]:
+        a.set_xlabel("time (s, simulated)")
     if title:
         fig.suptitle(title, y=1.0)
     fig.tight_layout()

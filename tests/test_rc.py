@@ -1,6 +1,8 @@
 """Robot control (drywall_lab/rc): the scene built from the site tables, the robot's reach, the motion
 planner's rules, one real simulated pick-and-place measured against its place pose, refusals that
-cause no motion, failures that are reported as failures, and episodes carried out step by step.
+cause no motion, failures that are reported as failures, episodes carried out step by step, the
+``simulate`` command (the batch contract carried through the robot; the paper's three layouts), the layout
+replay, the joint table, and the checks of notebooks 05 and 06's exercises (tried with wrong answers too).
 
 Failures are forced rather than waited for: a panel taken off its stack or a sheet laid on it in the
 simulation only (the tables do not know), a robot mistaken about its grip, a planner made to fail.
@@ -10,6 +12,7 @@ Expected geometry is computed here from the spec's section 1 (stud i at x = 0.40
 """
 from __future__ import annotations
 
+import json
 import math
 
 import mujoco
@@ -19,13 +22,16 @@ import pytest
 from drywall_lab.errors import Refusal
 from drywall_lab.im import RobotCommand
 from drywall_lab.rc import (ANGLE_TOLERANCE_DEG, JOINTS, POSITION_TOLERANCE, ArmIK, MotionPlanner, PlacementResult,
-                            PlanningError, RobotCell, build_scene, fast_mode, goes_on_after, panel_mass, pose_error,
+                            PlanningError, RobotCell, build_scene, goes_on_after, panel_mass, pose_error,
                             simulate_episode)
 from drywall_lab.rc import cell as cell_module
 from drywall_lab.rc.collision import CollisionChecker
 from drywall_lab.rc.motion import DROP, RESUME_TOLERANCE, seating_offset, timed_stage
 from drywall_lab.rc.robot import grip_transform, pose_matrix
 from drywall_lab.site import STACK_Y, Pose, default_site
+
+# meshcat 0.3.2 (the animations simulate --html writes) imports a pyzmq module that pyzmq has deprecated
+pytestmark = pytest.mark.filterwarnings("ignore:zmq.eventloop.ioloop is deprecated:DeprecationWarning")
 
 SPACING, HALF_STUD, DEPTH, H, T = 0.4064, 0.01905, 0.0889, 2.4384, 0.0127
 FT = 0.3048
@@ -486,12 +492,17 @@ def test_pose_error_angle():
     assert pose_error(flipped, Pose((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0)))[1] == pytest.approx(0.0)
 
 
-def test_fast_mode_reads_the_environment(monkeypatch):
+def test_fast_mode_is_the_courses_one_and_records_fewer_frames(monkeypatch):
+    """One fast-mode switch for the whole course (drywall_lab.course.fast_mode): robot control reads it."""
+    from drywall_lab.course import fast_mode
+    from drywall_lab.rc import record_fps
+    from drywall_lab.rc.settings import RECORD_FPS, RECORD_FPS_FAST
+
     monkeypatch.setenv("DRYWALL_FAST", "1")
-    assert fast_mode()
+    assert fast_mode() and record_fps() == RECORD_FPS_FAST < RECORD_FPS
     for off in ("", "0", "false"):
         monkeypatch.setenv("DRYWALL_FAST", off)
-        assert not fast_mode()
+        assert not fast_mode() and record_fps() == RECORD_FPS
     monkeypatch.delenv("DRYWALL_FAST")
     assert not fast_mode()
 
@@ -517,3 +528,329 @@ def test_an_episode_in_a_cell_with_a_partly_built_wall_starts_from_its_history(s
     assert [s.interpretation.refusal.reason for s in run.steps] == ["already_installed", "overlap"]
     assert [c.drywall_id for c in run.history.commands] == ["500320"] and run.history.state == cell.state
     assert not any(s.robot_moved for s in run.steps)
+
+
+
+# --- simulate: the batch contract carried through the robot (spec section 6) --------------------------------
+RUN_FIELDS = ["episode", "step", "words", "tags", "command", "refusal"]
+PLACEMENT_FIELDS = ["status", "success", "position_error_mm", "angle_error_deg", "collisions", "failure", "sim_time_s"]
+
+
+def simulate_cli(capsys, *args: str) -> tuple[int, list[dict], str]:
+    from drywall_lab.__main__ import main
+
+    code = main(["simulate", *args])
+    out, err = capsys.readouterr()
+    return code, [json.loads(line) for line in out.splitlines()], err
+
+
+def run_cli(capsys, path) -> list[dict]:
+    from drywall_lab.__main__ import main
+
+    assert main(["run", str(path)]) == 0
+    return [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+
+
+@pytest.fixture(scope="module")
+def small_episodes(tmp_path_factory):
+    """One placement, a refusal and an empty instruction in one episode; a refusal in a second one with a number
+    as its id. One simulated placement in all, so that the test stays short."""
+    path = tmp_path_factory.mktemp("simulate") / "episodes.jsonl"
+    path.write_text(json.dumps({"id": "e1", "instructions": [
+        "Pick up the full-size drywall and put it on stud 500100.",
+        "Take panel 500300 and put it on stud 500104.",
+        "",
+    ]}) + "\n" + json.dumps({"id": 2, "instructions": ["Put the 4 by 6 panel on stud 500112."]}) + "\n",
+        encoding="utf-8")
+    return path
+
+
+@pytest.fixture(scope="module")
+def simulated_small(small_episodes, tmp_path_factory):
+    """``simulate --html`` on the small episodes: exit code, records, what it said on stderr, the page."""
+    from drywall_lab.__main__ import main
+    import contextlib
+    import io
+
+    html = tmp_path_factory.mktemp("html") / "out" / "episodes.html"
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main(["simulate", str(small_episodes), "--html", str(html)])
+    return code, [json.loads(line) for line in out.getvalue().splitlines()], err.getvalue(), html
+
+
+def test_simulate_writes_the_run_fields_and_each_placement(simulated_small, small_episodes, capsys):
+    code, records, _, _ = simulated_small
+    assert code == 0
+    assert [(r["episode"], r["step"]) for r in records] == [("e1", 0), ("e1", 1), ("e1", 2), (2, 0)]
+    for r in records:
+        assert list(r) == RUN_FIELDS + ["placement"] and list(r["placement"]) == PLACEMENT_FIELDS
+    # the run fields are run's own, line for line
+    assert [{k: r[k] for k in RUN_FIELDS} for r in records] == run_cli(capsys, small_episodes)
+    placed, buried, empty, past_end = (r["placement"] for r in records)
+    assert placed["status"] == "placed" and placed["success"] and placed["failure"] is None
+    assert 0 <= placed["position_error_mm"] < POSITION_TOLERANCE * 1000
+    assert 0 <= placed["angle_error_deg"] < ANGLE_TOLERANCE_DEG and placed["collisions"] == []
+    assert placed["sim_time_s"] > 20
+    for refused in (buried, empty, past_end):
+        assert refused == {"status": "refused", "success": False, "position_error_mm": None, "angle_error_deg": None,
+                           "collisions": [], "failure": None, "sim_time_s": 0.0}
+
+
+def test_simulate_html_is_one_self_contained_animation_of_all_episodes(simulated_small):
+    import base64
+    import re
+
+    import umsgpack
+
+    _, _, err, html = simulated_small
+    page = html.read_text(encoding="utf-8")
+    assert page.lstrip().startswith("<!DOCTYPE html>") and "MeshCat.Viewer" in page
+    assert not re.search(r"<(?:script|link|img|iframe)\b[^>]*\b(?:src|href)\s*=", page)
+    assert set(re.findall(r"https?://[^\s\"'<>)]+", page)) <= {"http://www.w3.org/1999/xhtml"}
+    blobs = re.findall(r"data:application/octet-binary;base64,([A-Za-z0-9+/=]+)", page)
+    commands = [umsgpack.unpackb(base64.b64decode(b)) for b in blobs]
+    (animation,) = [c for c in commands if c["type"] == "set_animation"]
+    clips = {a["path"].split("/")[-1]: a["clip"] for a in animation["animations"]}
+    keys = {t["name"]: t for t in clips["panel_500320"]["tracks"]}[".position"]["keys"]
+    # 500320 goes from its stack to the wall, and back to its stack when the second episode starts afresh
+    ys = [k["value"][1] for k in keys]
+    assert ys[0] == pytest.approx(STACK_Y, abs=0.01) and min(ys) < 0.1 and ys[-1] == pytest.approx(STACK_Y, abs=0.01)
+    assert f"animation of 2 episode(s): {html}" in err
+
+
+def test_simulate_without_html_writes_no_page(small_episodes, tmp_path, capsys, monkeypatch):
+    """No --html: nothing recorded, no page; a placement the robot fails is reported as failed with its reason,
+    and the instructions after it as not carried out (not tagged, not interpreted)."""
+    mistaken_grip(monkeypatch, (0.008, 0.0, 0.0))  # the robot sets the panel 8 mm off
+    monkeypatch.chdir(tmp_path)
+    code, records, err = simulate_cli(capsys, str(small_episodes))
+    assert code == 0 and err == "" and list(tmp_path.iterdir()) == []
+    failed, after, empty, other = records
+    assert failed["command"] is not None and failed["placement"]["status"] == "failed"
+    assert failed["placement"]["failure"] == "off_pose" and not failed["placement"]["success"]
+    assert failed["placement"]["position_error_mm"] > POSITION_TOLERANCE * 1000
+    for r in (after, empty):
+        assert r["tags"] is None and r["command"] is None and r["refusal"] is None
+        assert r["placement"]["status"] == "not carried out"
+        assert r["placement"]["failure"] == "not carried out: the robot stopped after step 0"
+    assert after["words"] == ["Take", "panel", "500300", "and", "put", "it", "on", "stud", "500104"]
+    assert other["placement"]["status"] == "refused"  # the next episode starts afresh
+
+
+def test_simulate_reports_bad_input_like_run_before_simulating(tmp_path, capsys):
+    code, records, err = simulate_cli(capsys, str(tmp_path / "missing.jsonl"))
+    assert code == 2 and records == [] and "no episodes file" in err
+    bad = tmp_path / "bad.jsonl"
+    bad.write_text('{"id": "a", "instructions": ["Take panel 500320 and put it on stud 500100"]}\n{"id": "b"}\n')
+    code, records, err = simulate_cli(capsys, str(bad))
+    assert code == 2 and records == [] and "line 2" in err
+    good = tmp_path / "good.jsonl"
+    good.write_text('{"id": "a", "instructions": ["Take panel 500320 and put it on stud 500100"]}\n')
+    code, records, err = simulate_cli(capsys, str(good), "--html", str(tmp_path))
+    assert code == 2 and records == [] and "is a folder" in err
+    code, records, err = simulate_cli(capsys, str(good), "--html", str(good / "page.html"))
+    assert code == 2 and records == [] and "is a file, not a folder" in err
+
+
+def test_simulate_places_every_panel_of_the_papers_three_layouts(capsys):
+    """Issue 13's target: the three layouts (Figs. 15-18) through the default tagger, the IM rules and the robot."""
+    from drywall_lab.pipeline import LAYOUTS_PATH, paper_layouts
+
+    code, records, _ = simulate_cli(capsys, str(LAYOUTS_PATH))
+    assert code == 0
+    expected = [(layout["id"], k, want) for layout in paper_layouts() for k, want in enumerate(layout["expected"])]
+    assert [(r["episode"], r["step"]) for r in records] == [(e, k) for e, k, _ in expected]
+    for r, (_, _, want) in zip(records, expected):
+        p = r["placement"]
+        if "refusal" in want:
+            assert r["command"] is None and p["status"] == "refused"
+            continue
+        assert r["command"] == want
+        assert p["status"] == "placed" and p["success"] and p["collisions"] == [] and p["failure"] is None
+        assert p["position_error_mm"] < POSITION_TOLERANCE * 1000 and p["angle_error_deg"] < ANGLE_TOLERANCE_DEG
+    assert sum(r["placement"]["status"] == "placed" for r in records) == 13
+
+
+def test_each_instruction_is_decided_as_run_decides_it(site):
+    """``interpret_instruction`` against a growing history gives what ``run`` (pipeline.run_episode) gives."""
+    from drywall_lab.corpus import tokenize
+    from drywall_lab.im import ActionHistory
+    from drywall_lab.nlu import default_tagger
+    from drywall_lab.pipeline import run_episode
+    from drywall_lab.rc.episode import interpret_instruction
+
+    episode = {"id": "e", "instructions": [
+        "Pick up the full-size drywall and put it on stud 500100.", "Take panel 500300 and put it on stud 500104.",
+        "Grab the panel that is two feet wide and put it on the stud three to the right of the previous stud.",
+        "put it there", "same again on the centre of the next one"]}
+    tagger = default_tagger()
+    history = ActionHistory(site)
+    mine = []
+    for text in episode["instructions"]:
+        result = interpret_instruction(tokenize(text), tagger, history)
+        if result.command is not None:
+            history.record(result.command)
+        mine.append(result)
+    theirs = run_episode(episode, tagger, site)
+    assert [(m.tags, m.command, m.refusal and m.refusal.reason) for m in mine] == \
+        [(t.tags, t.command, t.refusal and t.refusal.reason) for t in theirs]
+
+
+# --- the library behind notebooks 05 and 06 ---------------------------------------------------------------
+def test_joint_table_reads_the_model(site):
+    from drywall_lab.rc import SERVOS, joint_table
+    from drywall_lab.rc.robot import RAIL_RANGE, SPEED_LIMITS
+
+    table = joint_table()
+    assert table.joint.tolist() == list(JOINTS) and table.unit.tolist() == ["m"] + ["deg"] * 6
+    assert (table.low[0], table.high[0]) == RAIL_RANGE and (table.low[2], table.high[2]) == (-80, 110)
+    assert table.kp.tolist() == [SERVOS[j].kp for j in JOINTS] and table.kv.tolist() == [SERVOS[j].kv for j in JOINTS]
+    assert table["speed limit (unit/s)"][1] == pytest.approx(math.degrees(SPEED_LIMITS[1]), abs=0.05)
+    cell = RobotCell(servo_gains={"a2": SERVOS["a2"].__class__(kp=1.0e5, kv=2.0e3, force=1.0e3)})
+    softer = joint_table(cell.scene.model).set_index("joint")
+    assert (softer.kp["a2"], softer.kv["a2"], softer["force limit"]["a2"]) == (1.0e5, 2.0e3, 1.0e3)
+    assert softer.kp["a3"] == SERVOS["a3"].kp
+
+
+def test_servo_gains_reach_the_model_and_the_controller_or_are_refused():
+    from drywall_lab.rc import SERVOS, ServoGains
+
+    cell = RobotCell()
+    sc = cell.scene
+    sc.set_servo_gains({"a1": ServoGains(kp=2.0e5, kv=1.0e4, force=5.0e3)})
+    a1 = sc.actuator_index[1]
+    assert sc.model.actuator_gainprm[a1, 0] == 2.0e5 and tuple(sc.model.actuator_biasprm[a1, 1:3]) == (-2.0e5, -1.0e4)
+    assert tuple(sc.model.actuator_forcerange[a1]) == (-5.0e3, 5.0e3) and (sc.kp[1], sc.kv[1]) == (2.0e5, 1.0e4)
+    assert sc.kp[2] == SERVOS["a2"].kp
+    with pytest.raises(ValueError, match="no joint 'a7'"):
+        sc.set_servo_gains({"a7": SERVOS["a1"]})
+    for bad in (ServoGains(kp=-1.0, kv=1.0, force=1.0), ServoGains(kp=1.0, kv=float("nan"), force=1.0),
+                ServoGains(kp=1.0, kv=1.0, force=0.0)):
+        with pytest.raises(ValueError, match="must be a positive number"):
+            sc.set_servo_gains({"a1": bad})
+
+
+def test_a_layout_replay_lists_what_is_not_as_the_layout_expects(site):
+    """``replay_layout`` compares outcomes and placements with the layout's ``expected``; a wrong expectation is
+    reported step by step."""
+    from drywall_lab.rc import replay_layout
+
+    layout = episode("one panel", ("500320", "500100"), ("500300", "500104"))
+    layout["expected"] = [{"drywall_id": "500320", "stud_id": "500100", "placement": "vertical_left"},
+                          {"refusal": "not_on_top"}]
+    replay = replay_layout(layout)
+    assert replay.ok and replay.problems() == [] and replay.history_figure == ""
+    assert "1 placed; largest errors" in replay.report() and "tolerance 5 mm" in replay.report()
+    wrong = dict(layout, id="layout2", expected=[{"drywall_id": "500320", "stud_id": "500101",
+                                                  "placement": "vertical_left"}, {"refusal": "overlap"}])
+    other = replay.__class__(wrong, replay.run)
+    assert not other.ok and other.history_figure == "Fig. 17(c)"
+    assert [p.split(":")[0] for p in other.problems()] == ["step 0", "step 1"]
+    assert "NOT as expected" in other.report()
+
+
+def test_an_episode_film_shows_each_placement_and_the_finished_wall():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from drywall_lab import viz
+
+    run = simulate_episode(episode("film", ("500320", "500100"), ("500300", "500104")), record_fps=8)
+    fig = viz.draw_episode_film(run, ncols=2)
+    titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
+    assert titles == ["step 0: 500320 to 500100", "film: the wall at the end"]
+    start = run.steps[0].result.sim_start
+    assert start == run.steps[0].sim_time_before
+    with pytest.raises(ValueError, match="record_fps"):
+        viz.draw_episode_film(simulate_episode(episode("unrecorded", ("500300", "500104"))))
+
+
+# --- exercises: the checks, with right and wrong answers ----------------------------------------------------
+def test_the_servo_gain_check_passes_the_reference_answer():
+    from drywall_lab.rc.exercises import check_servo_gains, reference_softer
+
+    check = check_servo_gains(reference_softer, 0.1)
+    assert check.passed and check.result.success, str(check)
+    assert str(check).startswith("PASSED") and "placed within tolerance" in str(check)
+
+
+def test_the_servo_gain_check_says_why_servos_too_soft_fail():
+    from drywall_lab.rc.exercises import check_servo_gains, reference_softer
+
+    check = check_servo_gains(reference_softer, 0.02)
+    assert not check.passed and not check.result.success and str(check).startswith("NOT YET")
+    assert "collision" in check.messages[-1] and "lag behind their set points" in check.messages[-1]
+    assert "try a stiffer scale" in check.messages[-1]
+
+
+def test_the_servo_gain_check_finds_wrong_gain_rules_without_simulating(monkeypatch):
+    from drywall_lab.rc import exercises
+    from drywall_lab.rc.robot import ServoGains
+
+    monkeypatch.setattr(exercises, "RobotCell", None)  # any simulation would fail here
+    kv_like_kp = exercises.check_servo_gains(lambda g, s: ServoGains(g.kp * s, g.kv * s, g.force), 0.1)
+    assert not kv_like_kp.passed and "square root" in kv_like_kp.messages[0]
+    force_too = exercises.check_servo_gains(lambda g, s: ServoGains(g.kp * s, g.kv * s ** 0.5, g.force * s), 0.1)
+    assert not force_too.passed and "force limit" in force_too.messages[0]
+    kp_wrong = exercises.check_servo_gains(lambda g, s: ServoGains(g.kp, g.kv * s ** 0.5, g.force), 0.1)
+    assert not kp_wrong.passed and kp_wrong.messages[0].startswith("kp at scale")
+    tuple_back = exercises.check_servo_gains(lambda g, s: (g.kp * s, g.kv, g.force), 0.1)
+    assert not tuple_back.passed and "must return a ServoGains" in tuple_back.messages[0]
+    raising = exercises.check_servo_gains(lambda g, s: 1 / 0, 0.1)
+    assert not raising.passed and "ZeroDivisionError" in raising.messages[0]
+    for scale in (1.0, 0.0, -0.1, float("nan"), "0.1", True):
+        check = exercises.check_servo_gains(exercises.reference_softer, scale)
+        assert not check.passed and check.result is None
+
+
+@pytest.fixture(scope="module")
+def tagger():
+    from drywall_lab.nlu import default_tagger
+
+    return default_tagger()
+
+
+EXERCISE_ANSWER = ["Pick up the full-size drywall and put it on stud 500100 in the bottom row.",
+                   "Take the 4 by 6 panel. Put it on the first stud in the top row.",
+                   "Pick up the standard panel and put it on stud 500106.",
+                   "Grab the drywall from the middle stack and hang it on stud 500109 on the center line."]
+
+
+def test_the_layout_check_passes_instructions_that_build_the_wall(site, tagger):
+    """A one-panel wall (the exercise's own has four: notebook 06 runs the reference answer against it)."""
+    from drywall_lab.rc.exercises import check_layout
+
+    wall = site.fresh().install("500320", "500100", "horizontal_bottom")
+    check = check_layout(EXERCISE_ANSWER[:1], tagger, target=wall)
+    assert check.passed, str(check)
+    assert check.run.all_placed and "the simulated robot built the wall" in check.messages[-1]
+
+
+def test_the_layout_check_says_what_is_wrong_without_running_the_robot(tagger, monkeypatch):
+    from drywall_lab.rc import exercises
+
+    monkeypatch.setattr(exercises, "simulate_episode", None)  # the robot must not be run for a wrong answer
+    too_few = exercises.check_layout(EXERCISE_ANSWER[:2], tagger)
+    assert not too_few.passed and sum(m.startswith("still missing") for m in too_few.messages) == 2
+    assert too_few.messages[-1].startswith("the robot was not run")
+    upright = exercises.check_layout(["Pick up the full-size drywall and put it on stud 500100."] + EXERCISE_ANSWER[1:],
+                                     tagger)
+    assert not upright.passed
+    assert "not in the wall asked for" in upright.messages[0] and "500100/ID_stud" in upright.messages[0]
+    assert upright.messages[1].startswith("instruction 1: refused (overlap)")
+    buried = exercises.check_layout(["Take panel 500310 and put it on stud 500106."] + EXERCISE_ANSWER, tagger)
+    assert not buried.passed and buried.messages[0].startswith("instruction 0: refused (not_on_top)")
+    for bad in ("Pick up the full-size drywall", [""], [3]):
+        assert exercises.check_layout(bad, tagger).messages == ["give a list of instructions, each a non-empty string"]
+
+
+def test_the_layout_check_counts_an_equal_sheet_from_the_same_place(site, tagger):
+    """The wall asks for sizes in places, not for sheet numbers: 500310 lying where 500320 was asked is right."""
+    from drywall_lab.rc import exercises
+
+    wall = site.fresh().install("500320", "500100", "horizontal_bottom").install("500310", "500106", "vertical_left")
+    pieces = {exercises._piece(wall, i) for i in wall.installed}
+    swapped = site.fresh().install("500320", "500106", "vertical_left").install("500310", "500100", "horizontal_bottom")
+    assert {exercises._piece(swapped, i) for i in swapped.installed} == pieces
+    assert exercises.exercise_wall().installed[-1].drywall_id == "500321"

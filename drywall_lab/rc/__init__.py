@@ -9,21 +9,26 @@
 - ``placement``: ``PlacementResult`` and how the placed panel is measured;
 - ``recording``: body poses for animations, joint traces for plots;
 - ``episode``: instructions -> tags -> commands -> motion, one instruction at a time;
-- ``settings``: time step and the fast mode (``DRYWALL_FAST``).
+- ``batch``: the ``simulate`` command's records (spec section 6's ``run`` fields plus each placement);
+- ``layouts``: the paper's three layouts replayed through the whole pipeline and checked;
+- ``exercises``: the checks of notebooks 05 and 06's exercises;
+- ``settings``: time step, and the frames recorded in and out of the course's fast mode (``DRYWALL_FAST``).
 """
 from drywall_lab.rc.cell import RobotCell
 from drywall_lab.rc.contacts import ContactEvent
 from drywall_lab.rc.episode import EpisodeRun, EpisodeStep, goes_on_after, simulate_episode
+from drywall_lab.rc.layouts import LayoutReplay, replay_layout
 from drywall_lab.rc.motion import MotionPlanner, PlacementPlan, PlanningError, Stage
 from drywall_lab.rc.placement import ANGLE_TOLERANCE_DEG, POSITION_TOLERANCE, PlacementResult, pose_error
 from drywall_lab.rc.recording import JointTrace, Recording
-from drywall_lab.rc.robot import JOINTS, RAIL_Y, ArmIK, robot_mjcf
+from drywall_lab.rc.robot import JOINTS, RAIL_Y, SERVOS, ArmIK, ServoGains, joint_table, robot_mjcf
 from drywall_lab.rc.scene import AREAL_DENSITY, Scene, build_scene, panel_mass, site_mjcf
-from drywall_lab.rc.settings import fast_mode, record_fps
+from drywall_lab.rc.settings import record_fps
 
 __all__ = [
     "ANGLE_TOLERANCE_DEG", "AREAL_DENSITY", "ArmIK", "ContactEvent", "EpisodeRun", "EpisodeStep", "JOINTS",
-    "JointTrace", "MotionPlanner", "POSITION_TOLERANCE", "PlacementPlan", "PlacementResult", "PlanningError",
-    "RAIL_Y", "Recording", "RobotCell", "Scene", "Stage", "build_scene", "fast_mode", "goes_on_after",
-    "panel_mass", "pose_error", "record_fps", "robot_mjcf", "simulate_episode", "site_mjcf",
+    "JointTrace", "LayoutReplay", "MotionPlanner", "POSITION_TOLERANCE", "PlacementPlan", "PlacementResult",
+    "PlanningError", "RAIL_Y", "Recording", "RobotCell", "SERVOS", "Scene", "ServoGains", "Stage", "build_scene",
+    "goes_on_after", "joint_table", "panel_mass", "pose_error", "record_fps", "replay_layout",
+    "robot_mjcf", "simulate_episode", "site_mjcf",
 ]

@@ -18,6 +18,7 @@ first plan is taken up instead only if it still passes the collision check
 from __future__ import annotations
 
 import time as wallclock
+from typing import Mapping
 
 import mujoco
 import numpy as np
@@ -27,7 +28,7 @@ from drywall_lab.rc.contacts import ContactWatch
 from drywall_lab.rc.motion import MotionPlanner, PlacementPlan, PlanningError, Stage, believed_grip
 from drywall_lab.rc.placement import PlacementResult, judge, pose_error
 from drywall_lab.rc.recording import JointTrace, Recording
-from drywall_lab.rc.robot import ArmIK, pose_matrix
+from drywall_lab.rc.robot import ArmIK, ServoGains, pose_matrix
 from drywall_lab.rc.scene import Scene, build_scene, panel_mass
 from drywall_lab.rc.settings import CONTROL_PERIOD
 from drywall_lab.site import SiteState, default_site
@@ -44,15 +45,19 @@ class RobotCell:
     """A simulated drywall site (``state``) with the rail-mounted arm, ready for commands.
 
     ``record_fps`` records body poses for an animation (``drywall_lab.viz``); ``None`` records
-    nothing. The cell keeps its own ``state``: after each placement the panel is on the wall.
+    nothing. ``servo_gains`` gives some joints' servos other gains than ``robot.SERVOS`` (notebook 05's
+    exercise). The cell keeps its own ``state``: after each placement the panel is on the wall.
     """
 
-    def __init__(self, state: SiteState | None = None, rail_x: float = 0.0, record_fps: float | None = None) -> None:
+    def __init__(self, state: SiteState | None = None, rail_x: float = 0.0, record_fps: float | None = None,
+                 servo_gains: Mapping[str, ServoGains] | None = None) -> None:
         self.state = state or default_site().fresh()
         self.site = self.state.site
         self.ik = ArmIK()
         self.planner = MotionPlanner(self.site, self.ik)
         self.scene: Scene = build_scene(self.state, rail_x, self.ik.home[1:])
+        if servo_gains:
+            self.scene.set_servo_gains(servo_gains)
         self.watch = ContactWatch(self.scene)
         self.recording = Recording.for_model(self.scene.model, record_fps) if record_fps else None
         self.results: list[PlacementResult] = []
@@ -283,7 +288,7 @@ class RobotCell:
             position_error_mm=1000 * pos_err, angle_error_deg=ang_err, slip_mm=slip_mm,
             sim_time=self.time - sim_start, wall_time=wallclock.perf_counter() - wall_start,
             base_moves=base_moves, unexpected_contacts=contacts, trace=self._trace or JointTrace(),
-            panel_lifted=panel_lifted, robot_clear=robot_clear, notes=list(notes or []),
+            panel_lifted=panel_lifted, robot_clear=robot_clear, notes=list(notes or []), sim_start=sim_start,
         )
         self._trace = None
         self.results.append(result)

@@ -23,16 +23,19 @@ history and the robot cell's site state therefore always agree while the episode
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 
 from drywall_lab.corpus import tokenize
-from drywall_lab.im import ActionHistory, InformationMapper, Interpretation
+from drywall_lab.im import ActionHistory, InformationMapper, Interpretation, interpret
 from drywall_lab.pipeline import WordTagger
 from drywall_lab.rc.cell import RobotCell
 from drywall_lab.rc.placement import PlacementResult
+
+if TYPE_CHECKING:
+    from drywall_lab.decision import DecisionSettings
 
 PLACED, FAILED, REFUSED, NOT_CARRIED_OUT = "placed", "failed", "refused", "not carried out"
 
@@ -140,9 +143,11 @@ class EpisodeRun:
         return pd.DataFrame(rows)
 
     # --- carrying the episode out ------------------------------------------------------------------
-    def carry_out(self, words: Sequence[str], tags: Sequence[str], instruction: str = "") -> EpisodeStep:
-        """The next step: interpret the tagged words against the history, let the robot carry the command
-        out, and record it in the history if the placement succeeded (see the module's docstring)."""
+    def carry_out(self, words: Sequence[str], tags: Sequence[str], instruction: str = "",
+                  interpretation: Interpretation | None = None) -> EpisodeStep:
+        """The next step: interpret the tagged words against the history (or take ``interpretation``, made
+        against it, as it is), let the robot carry the command out, and record it in the history if the
+        placement succeeded (see the module's docstring)."""
         cell = self.cell
         step = len(self.steps)
         before_t, before_q = cell.time, cell.scene.data.qpos.copy()
@@ -150,7 +155,8 @@ class EpisodeRun:
             done = EpisodeStep(step, None, None, before_t, before_t, False, instruction)
             self.steps.append(done)
             return done
-        interpretation = self.mapper.interpret(words, tags)
+        if interpretation is None:
+            interpretation = self.mapper.interpret(words, tags)
         result = None
         if interpretation.command is not None:
             result = cell.execute(interpretation.command)  # the history and the cell agree: no Refusal here
@@ -173,28 +179,48 @@ def history_of(cell: RobotCell) -> ActionHistory:
     return history
 
 
+def interpret_instruction(words: Sequence[str], tagger: WordTagger, history: ActionHistory,
+                          settings: DecisionSettings | None = None) -> Interpretation:
+    """One instruction's words through the tagger and IM against ``history``, as ``run`` does it
+    (``drywall_lab.pipeline.run_episode``): a tagger with confidence (``predict_confidence``) goes through
+    the decision layer (``drywall_lab.decision``, with ``settings``, its defaults when None), any other is
+    mapped on its best tags. Nothing is recorded."""
+    words = list(words)
+    if hasattr(tagger, "predict_confidence"):
+        from drywall_lab.decision import DEFAULT_SETTINGS, decide
+
+        settings = settings or DEFAULT_SETTINGS
+        confidence = tagger.predict_confidence([words], k=settings.k)[0]
+        return decide(words, confidence.kbest, confidence.marginals, tagger.labels, history, settings).interpretation
+    return interpret(words, tagger.predict([words])[0], history)
+
+
 def simulate_episode(episode: Mapping, tagger: WordTagger | None = None, record_fps: float | None = None,
                      cell: RobotCell | None = None) -> EpisodeRun:
     """An episode ``{"id", "instructions"}`` through NLU (``tagger``), IM and RC, one instruction at a time.
 
-    Without a tagger the episode's own gold ``words``/``tags`` are used (the paper's layouts carry them).
-    ``cell`` is the robot cell to use (a fresh site, recorded at ``record_fps``, when None).
+    Each instruction is tagged and interpreted as ``run`` does it (``interpret_instruction``) against the
+    history of the placements that succeeded so far. Without a tagger the episode's own gold
+    ``words``/``tags`` are used (the paper's layouts carry them). ``cell`` is the robot cell to use (a fresh
+    site, recorded at ``record_fps``, when None).
     """
     instructions = list(episode.get("instructions") or [])
-    if tagger is None:
-        if "words" not in episode or "tags" not in episode:
-            raise ValueError(f"episode {episode.get('id', '')!r} has no gold \"words\" and \"tags\": give a tagger")
-        tagged: Sequence[tuple[Sequence[str], Sequence[str]]] = list(zip(episode["words"], episode["tags"]))
-        tag_step: Callable[[int], tuple[Sequence[str], Sequence[str]]] = tagged.__getitem__
-        n = len(tagged)
-    else:
-        def tag_step(k: int) -> tuple[list[str], list[str]]:
-            words = tokenize(instructions[k])
-            return words, tagger.predict([words])[0]
-        n = len(instructions)
+    if tagger is None and ("words" not in episode or "tags" not in episode):
+        raise ValueError(f"episode {episode.get('id', '')!r} has no gold \"words\" and \"tags\": give a tagger")
     run = EpisodeRun(str(episode.get("id", "")), cell if cell is not None else RobotCell(record_fps=record_fps))
+    gold = list(zip(episode["words"], episode["tags"])) if tagger is None else []
+    n = len(gold) if tagger is None else len(instructions)
+
+    def step_input(k: int) -> tuple[Sequence[str], Sequence[str], Interpretation | None]:
+        """The words, the tags and (through a tagger) the interpretation of instruction ``k``, made now
+        against the history of the placements that succeeded so far."""
+        if tagger is None:
+            return gold[k][0], gold[k][1], None
+        interpretation = interpret_instruction(tokenize(instructions[k]), tagger, run.mapper.history)
+        return list(interpretation.words), list(interpretation.tags), interpretation
+
     for k in range(n):
         stopped = run.stopped_after is not None  # then the step is not carried out, not even tagged
-        words, tags = ([], []) if stopped else tag_step(k)
-        run.carry_out(words, tags, instructions[k] if k < len(instructions) else "")
+        words, tags, interpretation = ([], [], None) if stopped else step_input(k)
+        run.carry_out(words, tags, instructions[k] if k < len(instructions) else "", interpretation)
     return run

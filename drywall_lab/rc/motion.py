@@ -41,7 +41,7 @@ from __future__ import annotations
 import math
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 import numpy as np
 
@@ -49,6 +49,9 @@ from drywall_lab.im.command import RobotCommand
 from drywall_lab.rc.collision import CollisionChecker
 from drywall_lab.rc.robot import JOINTS, RAIL_RANGE, RAIL_Y, SPEED_LIMITS, ArmIK, IKFailure, grip_transform, pose_matrix
 from drywall_lab.site import Rect, Site, SiteState
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 #: The base stands this far (x, m) to the left of the point it works on, by preference ...
 STATION_DX = 1.0
@@ -211,6 +214,15 @@ class PlacementPlan:
     @property
     def duration(self) -> float:
         return sum(s.duration for s in self.stages)
+
+    def table(self) -> pd.DataFrame:
+        """One row per stage that takes time: its name, what moves (arm or base), the contacts expected, the
+        number of IK samples and the duration (s)."""
+        import pandas as pd
+
+        return pd.DataFrame([{"stage": s.name, "moves": s.kind, "contacts expected": s.context,
+                              "samples": len(s.samples), "duration (s)": round(s.duration, 2)}
+                             for s in self.stages if s.duration > 0])
 
 
 def seating_offset(command: RobotCommand, state: SiteState) -> tuple[float, float]:

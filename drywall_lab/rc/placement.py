@@ -74,6 +74,7 @@ class PlacementResult:
     panel_lifted: bool = False  #: the panel left its stack
     robot_clear: bool = True  #: the robot ended in its ready posture (False: it stopped where it was)
     notes: list[str] = field(default_factory=list)  #: re-planning errors and plans taken up again
+    sim_start: float = 0.0  #: the cell's simulated clock (s) when the placement began (trace times count from it)
 
     @property
     def realtime_factor(self) -> float:

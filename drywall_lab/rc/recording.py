@@ -81,3 +81,20 @@ class JointTrace:
     def largest_tracking_error(self) -> np.ndarray:
         """Per joint, the largest |set point - measured| over the placement (m for the rail, rad for the arm)."""
         return np.max(np.abs(np.array(self.q) - np.array(self.q_set)), axis=0)
+
+    def stage_table(self):
+        """A pandas DataFrame: each stage the robot ran, from and to (simulated s from the placement's start),
+        and whether the base or the arm moved (the paper's arm-before-base rule: never both)."""
+        import pandas as pd
+
+        table = pd.DataFrame(self.stages, columns=["stage", "from (s)", "to (s)"]).round(2)
+        table["moves"] = ["base" if name.startswith("base") else "arm" for name in table.stage]
+        return table
+
+    def tracking_table(self):
+        """A pandas DataFrame: per joint, the largest |set point - measured| in mm (rail) or degrees (arm)."""
+        import pandas as pd
+
+        error = self.largest_tracking_error
+        return pd.DataFrame({"joint": JOINTS, "largest |set point - measured|": [
+            f"{e * 1000:.2f} mm" if j == 0 else f"{np.degrees(e):.3f} deg" for j, e in enumerate(error)]})

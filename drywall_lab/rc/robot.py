@@ -19,12 +19,17 @@ model of the robot alone (``ArmIK``).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import mink
 import mujoco
 import numpy as np
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 #: The rail's centre line (y, m): between the wall (y = 0) and the stacks (y = STACK_Y), clear of
 #: the 8 ft sheets, which reach to y = STACK_Y - 1.22 = 1.38.
@@ -152,6 +157,30 @@ def robot_mjcf(rail_y: float = RAIL_Y) -> str:
   </actuator>
 </mujoco>
 """
+
+
+def joint_table(model: mujoco.MjModel | None = None) -> pd.DataFrame:
+    """The seven joints as the servos and the planner see them: range (from the MJCF), servo gains and force
+    limit (``SERVOS``), planning speed limit (``SPEED_LIMITS``); metres for the rail, degrees for the arm.
+
+    ``model`` is any compiled model holding the robot (a scene's, say); the robot's own MJCF when None.
+    The ``kp``/``kv``/force columns are read from the model's actuators, so a scene given other gains
+    (``Scene.set_servo_gains``) shows its own.
+    """
+    import pandas as pd
+
+    model = model if model is not None else mujoco.MjModel.from_xml_string(robot_mjcf())
+    rows = []
+    for j, name in enumerate(JOINTS):
+        joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+        actuator = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, f"servo_{name}")
+        scale, unit = (1.0, "m") if j == 0 else (math.degrees(1.0), "deg")
+        low, high = model.jnt_range[joint] * scale
+        rows.append({"joint": name, "unit": unit, "low": round(float(low), 1), "high": round(float(high), 1),
+                     "kp": float(model.actuator_gainprm[actuator, 0]), "kv": float(-model.actuator_biasprm[actuator, 2]),
+                     "force limit": float(model.actuator_forcerange[actuator, 1]),
+                     "speed limit (unit/s)": round(float(SPEED_LIMITS[j] * scale), 1)})
+    return pd.DataFrame(rows)
 
 
 def tcp_reach() -> float:

@@ -15,12 +15,15 @@ simulation measures afterwards is what the robot really did.
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+import math
 from dataclasses import dataclass, field
+from typing import Mapping
 
 import mujoco
 import numpy as np
 
-from drywall_lab.rc.robot import ENV_BIT, JOINTS, PANEL_BIT, RAIL_Y, ROBOT_BIT, TCP_SITE, TOOL_BODY, robot_mjcf
+from drywall_lab.rc.robot import (ENV_BIT, JOINTS, PANEL_BIT, RAIL_Y, ROBOT_BIT, TCP_SITE, TOOL_BODY, ServoGains,
+                                  robot_mjcf)
 from drywall_lab.rc.settings import TIMESTEP
 from drywall_lab.site import FOOT, Panel, Pose, SiteState
 
@@ -191,6 +194,30 @@ class Scene:
 
     def deactivate_weld(self, eq_id: int) -> None:
         self.data.eq_active[eq_id] = 0
+
+    # --- servos ---------------------------------------------------------------------------
+    def set_servo_gains(self, gains: Mapping[str, ServoGains]) -> None:
+        """Give the named joints' servos other gains and force limits (``robot.SERVOS`` otherwise); a
+        ``ValueError`` for an unknown joint or a gain that is not a positive finite number (``kv`` may be 0)."""
+        unknown = sorted(set(gains) - set(JOINTS))
+        if unknown:
+            raise ValueError(f"no joint {', '.join(map(repr, unknown))}: the joints are {', '.join(JOINTS)}")
+        m = self.model
+        for j, name in enumerate(JOINTS):
+            if name not in gains:
+                continue
+            g = gains[name]
+            values = {"kp": g.kp, "kv": g.kv, "force": g.force}
+            for key, value in values.items():
+                if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) \
+                        or value < 0 or (value == 0 and key != "kv"):
+                    raise ValueError(f"servo {name}: {key} must be a positive number, not {value!r}")
+            a = self.actuator_index[j]
+            m.actuator_gainprm[a, 0] = g.kp
+            m.actuator_biasprm[a, 1] = -g.kp
+            m.actuator_biasprm[a, 2] = -g.kv
+            m.actuator_forcerange[a] = (-g.force, g.force)
+            self.kp[j], self.kv[j] = g.kp, g.kv
 
 
 def build_scene(state: SiteState, rail_x: float = 0.0, arm: np.ndarray | None = None) -> Scene:

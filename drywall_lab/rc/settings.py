@@ -1,12 +1,10 @@
-"""Run settings for robot control: the project's fast mode and the simulation's time step.
+"""Run settings for robot control: the simulation's time step and what the fast mode changes.
 
-``DRYWALL_FAST=1`` (the project's fast mode, see the README) makes the notebooks record
-fewer animation frames; the physics, the motion and every measured figure stay the same,
-so a fast run's placement errors are the real ones.
+``DRYWALL_FAST=1`` (the project's fast mode, read by ``drywall_lab.course.fast_mode``, see the
+README) makes the notebooks record fewer animation frames; the physics, the motion and every
+measured figure stay the same, so a fast run's placement errors are the real ones.
 """
 from __future__ import annotations
-
-import os
 
 #: Simulation time step (s). 2 ms is small enough for the stiff joint servos and contacts.
 TIMESTEP = 0.002
@@ -17,11 +15,8 @@ RECORD_FPS = 20.0
 RECORD_FPS_FAST = 8.0
 
 
-def fast_mode() -> bool:
-    """True when ``DRYWALL_FAST`` is set to anything but ``""``, ``0``, ``false`` or ``no``."""
-    return os.environ.get("DRYWALL_FAST", "").strip().lower() not in ("", "0", "false", "no")
-
-
 def record_fps() -> float:
-    """Frames per second for recordings: fewer in fast mode."""
+    """Frames per second for recordings: fewer in the course's fast mode (``drywall_lab.course.fast_mode``)."""
+    from drywall_lab.course import fast_mode  # imported here, so that the course's helpers may use rc
+
     return RECORD_FPS_FAST if fast_mode() else RECORD_FPS

@@ -16,8 +16,9 @@ FIELD_SET = "field-set"
 ALL_SPLITS = PAPER_SPLITS + FIELD_CORPUS_SPLITS + (FIELD_SET,)
 #: What ``evaluate`` accepts: every set but the training splits.
 EVALUATION_SPLITS = ("validation", "test", "novel", "field-validation", "field-test", "field-novel", FIELD_SET)
-#: The training corpora: (training split, validation split).
-CORPORA = {"paper": ("train", "validation"), "field": ("field-train", "field-validation")}
+#: The training corpora: (training splits, validation split). The field corpus trains on its own training
+#: split and the paper corpus's, so that the paper's phrasings are kept (the test split stays at the paper's level).
+CORPORA = {"paper": (("train",), "validation"), "field": (("field-train", "train"), "field-validation")}
 
 
 def split_rows(name: str) -> list[dict]:
@@ -35,3 +36,10 @@ def split_rows(name: str) -> list[dict]:
 
         return field_set_rows()
     raise ValueError(f"unknown split {name!r}; the sets are {', '.join(ALL_SPLITS)}")
+
+
+def training_rows(corpus: str) -> list[dict]:
+    """The training instructions of a corpus (``CORPORA``): every one of its training splits, in order."""
+    if corpus not in CORPORA:
+        raise ValueError(f"unknown corpus {corpus!r}; the corpora are {', '.join(CORPORA)}")
+    return [row for split in CORPORA[corpus][0] for row in split_rows(split)]

@@ -114,7 +114,7 @@ def size_phrase(ch: Chooser, ref: G.TargetRef) -> Phrase:
             return _number(ch, b, "length") + plain(rng.choice(["foot long", "feet long", "ft long", "long"]))
         if form == 1:
             word = NUMBER_WORDS[b] if ch.chance(0.6) else str(b)
-            return tagged(f"{word}-footer", "length") if ch.novel else tagged(f"{word}-foot", "length") + plain("long")
+            return tagged(f"{word}-footer", "length") if ch.chance(0.5) else tagged(f"{word}-foot", "length") + plain("long")
         if form == 2:
             return _number(ch, b, "length", ("-foot", "'", " foot"))
         return plain(rng.choice(["length", "length of"])) + _number(ch, b, "length")
@@ -372,7 +372,7 @@ class Speaker:
 
     def foreman(self) -> Sentences:
         ch, T, D, P = self.ch, self.T, self.D, self.P
-        form = ch.rng.randrange(7)
+        form = ch.rng.randrange(8)
         if form == 0:
             return [self.end(T() + self.prep() + D() + self.comma() + P())]
         if form == 1:
@@ -388,6 +388,8 @@ class Speaker:
                              + plain(ch.rng.choice(["let's go", "come on", "move it", "chop chop", "today"])))]
         if form == 5:
             return [self.end(self.place() + T() + P() + self.prep() + D())]
+        if form == 6:
+            return [self.end(self.w(F.INTENTS) + self.place() + T() + self.prep() + D() + P() + self.w(F.CLOSERS))]
         return [self.end(T() + self.comma() + D() + self.comma() + P() + self.comma() + plain("go"))]
 
     def fragment(self) -> Sentences:
@@ -409,7 +411,7 @@ class Speaker:
     def listing(self) -> Sentences:
         ch = self.ch
         T, D, P = self.T(True), self.D(True), self.P()
-        form = int(self.form(["0", "1", "2", "4", "5", "~3"]))
+        form = int(self.form(["0", "1", "2", "3", "4", "5", "~6"]))
         colon = [punct(":")]
         if form == 0:
             out = plain(ch.rng.choice(["panel", "sheet", "board", "what"])) + colon + T + [punct(";")] + \
@@ -428,7 +430,11 @@ class Speaker:
         if form == 4:
             out = [self.end(plain("what") + colon + T), self.end(plain("where") + colon + D)]
             return out + ([self.end(plain("how") + colon + P)] if P else [])
-        return [plain("*") + T + plain("*") + D + (plain("*") + P if P else [])]
+        if form == 5:
+            return [plain("*") + T + plain("*") + D + (plain("*") + P if P else [])]
+        ticket = plain(f"ticket {ch.rng.randint(1, 40)}") + colon  # a job ticket (held back: the novel split only)
+        out = ticket + plain("item") + T + [punct(";")] + plain("location") + D
+        return [out + ([punct(";")] + plain("mount") + P if P else [])]
 
     def speech(self) -> Sentences:
         """Spoken: a foreman's or polite frame; ``render`` lowercases it and adds fillers and restarts."""
@@ -490,7 +496,9 @@ class Speaker:
 
     def context(self) -> Sentences:
         ch = self.ch
-        reason = plain(ch.rng.choice(F.CONTEXT))
+        context = ch.rng.choice(F.CONTEXT)
+        number = str(ch.rng.randint(2, 9)) if ch.chance(0.5) else NUMBER_WORDS[ch.rng.randint(2, 9)]
+        reason = parse(context.replace("{n}", number).replace("{sid}", f"5001{ch.rng.randrange(13):02d}"))
         body = self.formal() if ch.chance(0.4) else self.foreman()
         if ch.chance(0.5):
             return [self.end(reason)] + body

@@ -19,11 +19,10 @@ from __future__ import annotations
 
 #: The held-back families, in words (the README repeats this list).
 HELD_BACK: dict[str, str] = {
-    "rock nouns": "'rock', 'sheetrock', 'gyp board', 'wallboard' for the panel",
-    "course rows": "'course' for a horizontal row ('top course', 'the bottom course')",
-    "footer sizes": "one-word lengths ending in '-footer' ('a six-footer')",
-    "scratch-that corrections": "corrections introduced by 'scratch that', 'make that', 'I mean'",
-    "numbered checklists": "instructions written as numbered steps ('1) ... 2) ... 3) ...')",
+    "wallboard nouns": "'wallboard', 'GWB', 'gyp board' for the panel",
+    "tier rows": "'tier' for a horizontal row ('top tier', 'the bottom tier')",
+    "make-that corrections": "corrections introduced by 'make that', 'let me rephrase', 'rather'",
+    "job tickets": "instructions written as a job ticket ('ticket 12: item ...; location ...; mount ...')",
     "sign-off radio frames": "radio calls with a call sign and 'over and out' / 'how copy'",
     "member nouns": "'framing member', 'upright' for the stud",
     "hedge-after frames": "an instruction followed by a hedge ('..., if that works for you?')",
@@ -34,11 +33,11 @@ HELD_BACK: dict[str, str] = {
 PANEL_NOUNS = [
     "sheet/@T", "sheet/@T", "sheet/@T", "panel/@T", "panel/@T", "board/@T", "board/@T", "drywall/@T",
     "piece/@T", "drywall/@T sheet/@T", "one/@T", "one/@T", "drywall/@T board/@T", "plasterboard/@T",
-    "~rock/@T", "~sheetrock/@T", "~gyp/@T board/@T", "~wallboard/@T",
+    "rock/@T", "sheetrock/@T", "~gyp/@T board/@T", "~wallboard/@T", "~GWB/@T",
 ]
 #: The panel before its id ("sheet 500320"): the nouns without "one".
 ID_NOUNS = [n for n in PANEL_NOUNS if not n.startswith("one/")]
-PANEL_NOUNS_PLURAL = ["sheets", "panels", "boards", "ones", "pieces", "~rocks"]
+PANEL_NOUNS_PLURAL = ["sheets", "panels", "boards", "ones", "pieces", "rocks"]
 STUD_NOUNS = ["stud/@D", "stud/@D", "stud/@D", "stud/@D", "post/@D", "~framing/@D member/@D", "~upright/@D"]
 STACK_NOUNS = ["stack", "stack", "pile", "pile", "pallet", "bunch", "lot"]
 
@@ -54,7 +53,10 @@ OPENERS = ["", "", "", "", "okay", "ok", "alright", "right", "so", "next", "now"
            "next up", "alright next one", "right then", "yo", "hey", "hey robot", "robot", "listen", "good",
            "nice", "cool", "perfect"]
 CLOSERS = ["", "", "", "", "", "thanks", "thank you", "cheers", "please", "pls", "thx", "ta", "when you can",
-           "nice and easy", "carefully", "good", "go", "for me"]
+           "nice and easy", "carefully", "good", "go", "for me", "mate", "buddy", "boss", "pal", "chief"]
+#: Ways of saying "do this" that carry no information ("let's", "you're gonna", "what I want is").
+INTENTS = ["let's", "you're gonna", "you gonna", "we need to", "I want you to", "gonna have to", "next we", "we'll",
+           "what I want is", "ok so for this one", "the plan is to", "time to", "go ahead and", "you can"]
 #: Reasons and context said before the instruction ("We're closing up this bay, so ...").
 CONTEXT = [
     "we are closing up this bay", "the inspector is coming after lunch", "we need to finish this wall today",
@@ -63,12 +65,21 @@ CONTEXT = [
     "the insulation is in", "this is the last wall before break", "we're doing the top rows now",
     "I checked the layout", "the foreman wants this section done", "we changed the plan a bit",
     "good job on the last one", "we're behind schedule", "the framing got checked", "this wall is next",
+    "we have {n} sheets left", "{n} more to go after this", "it's almost {n} o'clock", "we did {n} already",
+    "{sid} is done", "we just finished {sid}", "{sid} looks good", "the window is on the left side",
+    "we start at the left end", "the right side is done", "the top row on the left is finished",
+    "we did the bottom course yesterday", "there's a window in the middle of the wall",
+    "the last stud is a bit crooked", "the 4x8s are heavy so go slow", "the left pile is getting low",
+    "the first stud has a pipe next to it", "the centre line is marked in blue", "we're two sheets behind",
+    "the switch box is on the right side", "the top of the wall is not straight", "the full sheets are heavy",
+    "mind the outlet box", "the door opening is further down", "careful , the floor is wet",
+    "there's a pipe behind the wall", "the ceiling is eight feet here",
 ]
 CONTEXT_LINKS = ["so", "so", "and", "which means", "therefore", "hence", "that's why", ""]
 #: Words that abandon what was just said: the final intention counts.
 CORRECTIONS = ["no", "no wait", "wait", "sorry", "actually", "actually no", "no no", "hold on", "oops",
-               "my bad", "correction", "not that", "rather", "or no", "hang on",
-               "~scratch that", "~make that", "~I mean", "~let me rephrase"]
+               "my bad", "correction", "not that", "or no", "hang on", "scratch that", "I mean", "wait no",
+               "~make that", "~let me rephrase", "~rather"]
 CORRECTION_ENDS = ["", "", "instead", "not the other one", "sorry", "my mistake", "I meant", "I mean that"]
 RADIO_CALLS = ["copy", "roger", "roger that", "copy that", "ten four", "10-4", "affirmative", "go ahead",
                "robot, copy", "come in robot", "over", "read you"]
@@ -124,6 +135,7 @@ TARGET_SAME_TERSE = ["same/dim again/dim", "same/dim as last/dim", "same/dim siz
 TARGET_STACK = [
     "the {noun} from the {where}", "a {noun} off the {where}", "the {noun} {where}", "one from the {where}",
     "whatever's on top of the {where}", "the top {noun} from the {where}", "the one {where}",
+    "the top one off the {where}", "the uppermost {noun} on the {where}", "the next {noun} off the {where}",
 ]
 TARGET_STACK_TERSE = ["{where}", "{where}", "top of the {where}", "{noun} from {where}"]
 #: Where each stack is, as a phrase with the position words tagged Dw_loc1 ({stack} is a stack noun).
@@ -249,7 +261,7 @@ PLACEMENT = {
     "vertical_left": [  # the default: mostly nothing said; all O
         "", "", "", "", "", "", "", "", "", "standing up", "upright", "vertical", "vertically", "straight up",
         "on its edge", "plumb", "the usual way", "edge on the left side of the {stud}", "long way up",
-        "standing", "up and down",
+        "standing", "up and down", "portrait", "portrait style", "stood up", "on the stud's left edge",
     ],
     "vertical_middle": [
         "on the centre/Vr_md line/Vr_md", "on the center/Vr_md line/Vr_md", "on/Vr_md centre/Vr_md", "on/Vr_md center/Vr_md",
@@ -260,6 +272,7 @@ PLACEMENT = {
         "down the middle/Vr_md of the {stud}", "on the {stud} centre/Vr_md", "at the middle/Vr_md line/Vr_md",
         "in the middle/Vr_md of the {stud}", "lined up on the centre/Vr_md line/Vr_md", "vertical on/Vr_md centre/Vr_md",
         "upright on the center/Vr_md line/Vr_md", "edge on c-l/Vr_md", "on the mid/Vr_md line/Vr_md",
+        "portrait on the centre/Vr_md line/Vr_md", "with the edge in the middle/Vr_md of the {stud}",
     ],
     "horizontal_top": [
         "up top/Hr_top", "in the top/Hr_top row/Hr_top", "across the top/Hr_top", "top/Hr_top row/Hr_top",
@@ -267,7 +280,10 @@ PLACEMENT = {
         "in the upper/Hr_top half/Hr_top", "horizontal at the top/Hr_top", "high/Hr_top", "up high/Hr_top",
         "top/Hr_top half/Hr_top", "lying across the top/Hr_top", "laid flat at the top/Hr_top",
         "on the top/Hr_top part/Hr_top", "horizontally in the top/Hr_top row/Hr_top", "top/Hr_top",
-        "~in the top/Hr_top course/Hr_top", "~top/Hr_top course/Hr_top", "~the upper/Hr_top course/Hr_top",
+        "tight to the ceiling/Hr_top", "up against the ceiling/Hr_top", "landscape at the top/Hr_top",
+        "landscape up top/Hr_top", "lying down at the top/Hr_top",
+        "in the top/Hr_top course/Hr_top", "top/Hr_top course/Hr_top", "the upper/Hr_top course/Hr_top",
+        "~in the top/Hr_top tier/Hr_top", "~top/Hr_top tier/Hr_top", "~the upper/Hr_top tier/Hr_top",
     ],
     "horizontal_bottom": [
         "down low/Hr_btm", "in the bottom/Hr_btm row/Hr_btm", "across the bottom/Hr_btm", "bottom/Hr_btm row/Hr_btm",
@@ -275,8 +291,10 @@ PLACEMENT = {
         "on the lower/Hr_btm row/Hr_btm", "in the lower/Hr_btm half/Hr_btm", "horizontal at the bottom/Hr_btm",
         "low/Hr_btm", "bottom/Hr_btm half/Hr_btm", "lying across the bottom/Hr_btm", "at floor/Hr_btm level/Hr_btm",
         "on the bottom/Hr_btm part/Hr_btm", "horizontally in the bottom/Hr_btm row/Hr_btm", "bottom/Hr_btm",
-        "down at the bottom/Hr_btm", "~in the bottom/Hr_btm course/Hr_btm", "~bottom/Hr_btm course/Hr_btm",
-        "~the lower/Hr_btm course/Hr_btm",
+        "down at the bottom/Hr_btm", "tight to the floor/Hr_btm", "on the floor/Hr_btm",
+        "landscape at the bottom/Hr_btm", "landscape down low/Hr_btm", "lying down at the bottom/Hr_btm",
+        "in the bottom/Hr_btm course/Hr_btm", "bottom/Hr_btm course/Hr_btm", "the lower/Hr_btm course/Hr_btm",
+        "~in the bottom/Hr_btm tier/Hr_btm", "~bottom/Hr_btm tier/Hr_btm", "~the lower/Hr_btm tier/Hr_btm",
     ],
 }
 #: Placements that cannot be said without a verb-free phrase ("up top" reads fine everywhere).

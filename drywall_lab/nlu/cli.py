@@ -105,14 +105,14 @@ def make_tagger(
 def cmd_train(args: argparse.Namespace) -> int:
     """``train KIND --out DIR [--corpus paper|field]``: train on a corpus's training split (or its first N rows),
     validate on its validation split, save."""
-    from drywall_lab.splits import CORPORA, split_rows
+    from drywall_lab.splits import CORPORA, split_rows, training_rows
 
     tagger = make_tagger(args.kind, coref=args.coref, encoder=args.encoder, learning_rate=args.learning_rate,
                          warmup_ratio=args.warmup_ratio, char_features=args.char_features,
                          word_dropout=args.word_dropout, batch_size=args.batch_size)
     device = resolve_device(args.device)
-    train_split, validation_split = CORPORA[args.corpus]
-    train_rows = split_rows(train_split)
+    validation_split = CORPORA[args.corpus][1]
+    train_rows = training_rows(args.corpus)
     if args.train_size is not None:
         if not 1 <= args.train_size <= len(train_rows):
             raise ValueError(f"--train-size must be between 1 and {len(train_rows)}, got {args.train_size}")

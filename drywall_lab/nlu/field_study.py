@@ -104,7 +104,7 @@ def score_tagger(tagger: Tagger, settings: FieldStudySettings) -> dict:
 
 def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = None) -> pd.DataFrame:
     """Train and score the six taggers; write ``ablation.csv`` and ``README.md`` to ``out_dir``."""
-    from drywall_lab.splits import CORPORA, split_rows
+    from drywall_lab.splits import CORPORA, split_rows, training_rows
 
     settings = settings or FieldStudySettings.full()
     out = Path(out_dir)
@@ -113,8 +113,8 @@ def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = N
     started = time.perf_counter()
     rows = []
     for name, corpus, kind, tagger in study_taggers(settings):
-        train_split, validation_split = CORPORA[corpus]
-        train = split_rows(train_split)[: settings.train_sizes[corpus]]
+        validation_split = CORPORA[corpus][1]
+        train = training_rows(corpus)[: settings.train_sizes[corpus]]
         validation = split_rows(validation_split)[: settings.evaluation_size]
         tagger.fit(train, validation, seed=settings.seed, progress=False)
         row = {"model": name, "kind": kind, "corpus": corpus, "n_train": len(train),

@@ -260,6 +260,14 @@ def _html_output(option: str | None) -> Path | None:
     return path
 
 
+def _cmd_chat(args: argparse.Namespace) -> int:
+    """A dialogue in the terminal: instructions, the robot's commands and questions, the wall after each step."""
+    from drywall_lab.dialogue import Dialogue, run_chat
+    from drywall_lab.pipeline import load_tagger_option
+
+    return run_chat(Dialogue(load_tagger_option(args.tagger)), input, sys.stdout)
+
+
 def _cmd_experiment(args: argparse.Namespace) -> int:
     """The paper's NLU study (Tables 3-5, Fig. 13) on this corpus, or the field ablation (issue 11)."""
     if args.study == "field":
@@ -330,6 +338,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--html", default=None,
                    help="write one self-contained HTML animation of all the episodes here (plays offline)")
     p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser("chat", help="talk to the robot: an instruction, its command or question, your answer")
+    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
+    p.set_defaults(func=_cmd_chat)
 
     p = sub.add_parser("demo", help="headless walk-through of the course material")
     p.set_defaults(func=_cmd_demo)

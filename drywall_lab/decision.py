@@ -108,7 +108,9 @@ class Decision:
 
     ``interpretation`` is the chosen reading's (its trace ends with the decision); ``confidence`` the
     probability of the readings that give the chosen outcome; ``readings`` every reading considered;
-    ``action``: ``act``, ``recover`` (acted on a second reading), ``ask`` or ``refuse``.
+    ``action``: ``act``, ``recover`` (acted on a second reading), ``ask`` or ``refuse``; ``options``: for a
+    question, the commands it asks about (``Outcome`` tuples, the likelier first), so that an answer
+    ("yes", "the second") can pick one (``drywall_lab.dialogue``).
     """
 
     words: list[str]
@@ -117,6 +119,7 @@ class Decision:
     confidence: float
     action: str
     readings: list[Reading] = field(default_factory=list)
+    options: list[Outcome] = field(default_factory=list)
 
     @property
     def command(self):
@@ -214,7 +217,8 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
     mass = _mass(readings)
     rival_commands = list(dict.fromkeys(r.outcome for r in within if r.outcome[0] == "command"))
 
-    def finish(reading: Reading, action: str, note: str, refusal: Refusal | None = None) -> Decision:
+    def finish(reading: Reading, action: str, note: str, refusal: Refusal | None = None,
+               options: Sequence[Outcome] = ()) -> Decision:
         result = Interpretation(list(words), list(reading.tags), Trace(list(reading.interpretation.trace.steps)),
                                 reading.interpretation.command if refusal is None else None,
                                 reading.interpretation.refusal if refusal is None else refusal)
@@ -222,13 +226,14 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
             f"{'command ' + _describe(r.outcome) if r.outcome[0] == 'command' else 'refused (' + r.outcome[1] + ')'}"
             f" p={r.probability:.3f}" for r in readings[:4])
         result.trace.add("decision", f"D {action}", True, conclusion=f"{note} [readings: {alternatives}]")
-        return Decision(words, list(reading.tags), result, mass.get(reading.outcome, 0.0), action, readings)
+        return Decision(words, list(reading.tags), result, mass.get(reading.outcome, 0.0), action, readings,
+                        list(options))
 
     if best.outcome[0] == "command":
         others = [o for o in rival_commands if o != best.outcome]
         if others:
             return finish(best, "ask", "two readings give different commands",
-                          Refusal("unclear", question_between(best.outcome, others[0])))
+                          Refusal("unclear", question_between(best.outcome, others[0])), [best.outcome, others[0]])
         doubtful = _doubtful_words(words, marginals, labels, best.tags, settings.doubt)
         changing: list[int] = []
         variants = [[(i, second)] for i, second in doubtful] + ([doubtful] if len(doubtful) > 1 else [])
@@ -241,7 +246,7 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         if mass[best.outcome] < settings.act or changing:
             why = (f"the command's readings carry p={mass[best.outcome]:.3f} < {settings.act}"
                    if not changing else "a doubtful word changes the outcome")
-            return finish(best, "ask", why, Refusal("unclear", _confirm(best.outcome, words, changing)))
+            return finish(best, "ask", why, Refusal("unclear", _confirm(best.outcome, words, changing)), [best.outcome])
         return finish(best, "act", f"one command, p={mass[best.outcome]:.3f}")
 
     reason = best.outcome[1]
@@ -251,7 +256,7 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         if len(rival_commands) > 1:
             second = next(o for o in rival_commands if o != first)
             return finish(chosen, "ask", "readings within the margin give different commands",
-                          Refusal("unclear", question_between(first, second)))
+                          Refusal("unclear", question_between(first, second)), [first, second])
         if reason == "undetermined" and mass[first] >= settings.recover:
             return finish(chosen, "recover",
                           f"the best reading is undetermined; the next reading within the margin gives one command, "
@@ -261,7 +266,7 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
             question = _confirm(first, words, [])
             text = f"{message} Or did you mean {_describe(first)}?" if message else question
             return finish(chosen, "ask", f"refused ({reason}), but a feasible reading has p={mass[first]:.3f}",
-                          Refusal("unclear", text))
+                          Refusal("unclear", text), [first])
     return finish(best, "refuse", f"refused ({reason})")
 
 

@@ -1,0 +1,116 @@
+"""The dialogue (drywall_lab/dialogue.py): scripted conversations, the chat command, the wall in text."""
+from __future__ import annotations
+
+import io
+import math
+
+import numpy as np
+
+from drywall_lab.corpus.markup import parse
+from drywall_lab.corpus.tags import TAGS
+from drywall_lab.dialogue import Dialogue, chat_widget, run_chat, wall_text
+from drywall_lab.nlu.base import TagConfidence
+from drywall_lab.site import default_site
+
+
+class ScriptedTagger:
+    """Readings fixed in advance for each instruction: {text: [(markup, probability), ...]}."""
+
+    labels = TAGS
+
+    def __init__(self, readings: dict[str, list[tuple[str, float]]]) -> None:
+        self.readings = readings
+
+    def predict_confidence(self, sentences, k=5, batch_size=64):
+        out = []
+        for words in sentences:
+            options = self.readings[" ".join(words)]
+            kbest = []
+            for markup, p in options:
+                tags = [t.tag for t in parse(markup) if t.is_word]
+                assert len(tags) == len(words)
+                kbest.append((tags, math.log(p)))
+            marginals = np.zeros((len(words), len(TAGS)))
+            for i, tag in enumerate(kbest[0][0]):
+                marginals[i, TAGS.index(tag)] = 1.0
+            out.append(TagConfidence(kbest[0][0], marginals, kbest[:k]))
+        return out
+
+
+CENTRE = "put the 2 by 8 on stud 500104 centre line"
+READINGS = {
+    CENTRE: [("put the 2/width by 8/length on stud 500104/ID_stud centre/Vr_md line/Vr_md", 0.5),
+             ("put the 2/width by 8/length on stud 500104/ID_stud centre line", 0.45)],
+    "the full sheet on stud 500100": [("the full/dim sheet on stud 500100/ID_stud", 0.97)],
+    "panel 500300 on stud 500108": [("panel 500300/ID_wall on stud 500108/ID_stud", 0.99)],
+}
+
+
+def test_a_question_answered_yes_carries_out_the_first_command():
+    d = Dialogue(ScriptedTagger(READINGS))
+    reply = d.say(CENTRE)
+    assert reply.question and reply.command is None and len(d.history) == 0
+    assert reply.text.startswith("Did you mean panel 500321 on stud 500104 upright with its edge on the stud's centre")
+    reply = d.say("yes")
+    assert reply.command.as_contract() == {"drywall_id": "500321", "stud_id": "500104", "placement": "vertical_middle"}
+    assert len(d.history) == 1 and d.pending is None
+
+
+def test_the_second_option_and_no():
+    d = Dialogue(ScriptedTagger(READINGS))
+    d.say(CENTRE)
+    assert d.say("the second").command.placement.value == "vertical_left"
+    d = Dialogue(ScriptedTagger(READINGS))
+    d.say(CENTRE)
+    reply = d.say("no")
+    assert reply.command is None and "will not" in reply.text and len(d.history) == 0 and d.pending is None
+
+
+def test_a_corrected_instruction_replaces_the_question():
+    d = Dialogue(ScriptedTagger(READINGS))
+    d.say(CENTRE)
+    reply = d.say("the full sheet on stud 500100")
+    assert reply.command.drywall_id == "500320" and len(d.history) == 1
+
+
+def test_a_refusal_leaves_the_wall_as_it_was():
+    d = Dialogue(ScriptedTagger(READINGS))
+    reply = d.say("panel 500300 on stud 500108")
+    assert reply.command is None and not reply.question and "500300" in reply.text and len(d.history) == 0
+    assert d.say("   ").text.startswith("I did not hear an instruction")
+
+
+def test_the_chat_command_with_the_default_tagger(monkeypatch, capsys):
+    from drywall_lab.__main__ import main
+
+    lines = iter(["Pick up the full-size drywall and put it on stud 500100.", "quit"])
+    monkeypatch.setattr("builtins.input", lambda prompt="": next(lines))
+    assert main(["chat"]) == 0
+    out = capsys.readouterr().out
+    assert "robot> Placing 500320 on stud 500100" in out and "1 panel(s) installed." in out
+    assert out.count("left stack (4 x 8)") == 2  # the wall before and after the placement
+
+
+def test_run_chat_ends_at_the_end_of_input():
+    def read(prompt):
+        raise EOFError
+    out = io.StringIO()
+    assert run_chat(Dialogue(ScriptedTagger(READINGS)), read, out) == 0
+    assert out.getvalue().endswith("0 panel(s) installed.\n")
+
+
+def test_wall_text_draws_panels_and_stacks():
+    state = default_site().fresh().install("500320", "500100", "vertical_left").install("500321", "500104", "horizontal_top")
+    text = wall_text(state)
+    lines = text.splitlines()
+    assert lines[0].count("M") == 24 and lines[7].count("L") == 12  # 8 ft across the top; 4 ft wide at the floor
+    assert "00  01  02" in text and "left stack (4 x 8): 500300, 500310 (top last)" in text
+
+
+def test_chat_widget_runs_a_scripted_exchange():
+    ui = chat_widget(Dialogue(ScriptedTagger(READINGS)))
+    box = ui.children[0].children[0]
+    box.value = CENTRE  # Enter in the text box sends it
+    assert ui.dialogue.pending is not None and box.value == ""
+    box.value = "yes"
+    assert len(ui.dialogue.history) == 1 and ui.dialogue.pending is None

@@ -401,3 +401,65 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 if __name__ == "__main__":
     raise SystemExit(main())
+
+
+# --- for the course (notebook 07) ----------------------------------------------------------------------------
+def failures(records: Iterable[Mapping], field_set: FieldSet) -> pd.DataFrame:
+    """The steps a run got wrong, one row each: voice, text, what was expected and what the run did, the
+    kind of mistake (``wrong_action`` or ``over_refusal``) and, where the set has hand-written tags, the
+    words the tagger tagged differently (``word: gold -> predicted``)."""
+    gold = {(str(g["episode"]), int(g["step"])): g for g in field_set.gold}
+    rows = []
+    for number, record in enumerate(records, start=1):
+        g = gold[(str(record["episode"]), int(record["step"]))]
+        outcome = _step_outcome(record, g["expect"], f"run record {number}")
+        if outcome == "right":
+            continue
+        did = (" ".join(f"{k}={v}" for k, v in record["command"].items()) if record["command"] is not None
+               else f"refused: {record['refusal']}")
+        tag_diff = ""
+        if "tags" in g and list(g["words"]) == list(record["words"]):
+            tag_diff = ", ".join(f"{w}: {a} -> {b}" for w, a, b in zip(g["words"], g["tags"], record["tags"]) if a != b)
+        rows.append({"voice": g["style"], "text": g["text"], "expected": " ".join(f"{k}={v}" for k, v in g["expect"].items()),
+                     "did": did, "mistake": outcome, "tags_differ": tag_diff})
+    return pd.DataFrame(rows, columns=["voice", "text", "expected", "did", "mistake", "tags_differ"])
+
+
+def check_own_instructions(instructions: Sequence[str], expected: Mapping[str, str], tagger=None,
+                           minimum: int = 3):
+    """Notebook 07's exercise: instructions of the student's own for one command, through the whole pipeline.
+
+    Passes when there are at least ``minimum`` different instructions, none of them moves the robot wrongly
+    (a command other than ``expected``: ``{"drywall_id", "stud_id", "placement"}``), and at least two are
+    carried out as intended (a question is safe, but a pipeline that only asks is no help). Each message
+    says what the pipeline did with one instruction. Returns a ``drywall_lab.course.ExerciseCheck``.
+    """
+    from drywall_lab.corpus.io import tokenize
+    from drywall_lab.course import ExerciseCheck
+    from drywall_lab.decision import decide_episode
+    from drywall_lab.nlu import default_tagger
+
+    tagger = tagger or default_tagger()
+    texts = [str(t) for t in instructions]
+    messages: list[str] = []
+    distinct = {" ".join(w.lower() for w in tokenize(t)) for t in texts} - {""}
+    if len(distinct) < minimum:
+        return ExerciseCheck(False, [f"Write at least {minimum} different instructions; there are {len(distinct)}."])
+    right = wrong = 0
+    for text in texts:
+        decision = decide_episode([tokenize(text)], tagger)[0]
+        tagged = " ".join(w if t == "O" else f"{w}/{t}" for w, t in zip(decision.words, decision.tags))
+        if decision.acted:
+            got = decision.command.as_contract()
+            if all(got[k] == expected[k] for k in COMMAND_KEYS):
+                right += 1
+                messages.append(f"carried out as intended: {text!r} ({tagged})")
+            else:
+                wrong += 1
+                messages.append(f"MOVED THE ROBOT WRONGLY: {text!r} became {got} ({tagged}). Which words were "
+                                "tagged wrong, and which tag should they carry?")
+        else:
+            messages.append(f"no action ({decision.refusal.reason}): {text!r}: {decision.refusal.message} ({tagged})")
+    if wrong == 0 and right < 2:
+        messages.append("Safe, but only one instruction or none was carried out: try wordings the robot understands.")
+    return ExerciseCheck(wrong == 0 and right >= 2, messages)

@@ -245,13 +245,15 @@ def make_tagger_scores(bin_dir: Path, tagger_dir: Path) -> subprocess.CompletedP
 
 
 def test_tagger_scores_recipe_writes_evaluates_last_line_per_split(fake_bin, tmp_path):
+    from drywall_lab.splits import EVALUATION_SPLITS
+
     tagger = tmp_path / "tagger"
     tagger.mkdir()
     (tagger / "tagger.json").write_text("{}")
     result = make_tagger_scores(fake_bin, tagger)
     assert result.returncode == 0, result.stderr
     assert (tagger / "scores.txt").read_text().splitlines() == [
-        f"{split} acc_word=0.9{split} acc_inst=0.8 n_instructions=4 acc_task=0.7" for split in ("validation", "test", "novel")]
+        f"{split} acc_word=0.9{split} acc_inst=0.8 n_instructions=4 acc_task=0.7" for split in EVALUATION_SPLITS]
     assert sorted(p.name for p in tagger.iterdir()) == ["scores.txt", "tagger.json"]
 
 

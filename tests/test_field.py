@@ -287,3 +287,55 @@ def test_command_line_check_and_score(tmp_path, field, capsys):
     out = capsys.readouterr().out
     assert "ALL" in out and "over_refusal_rate" in out
     assert main(["score", str(tmp_path / "missing.jsonl")]) == 2
+
+
+# --- for the course (notebook 07) ----------------------------------------------------------------------------
+def test_failures_lists_the_wrong_steps_with_the_words_tagged_differently(field):
+    from drywall_lab.field import failures
+
+    records = [_record(g["episode"], g["step"], command=g["expect"]) if "refusal" not in g["expect"]
+               else _record(g["episode"], g["step"], refusal="no") for g in field.gold]
+    assert failures(records, field).empty
+    first = next(i for i, g in enumerate(field.gold) if "refusal" not in g["expect"] and "ID_stud" in g["tags"])
+    g = field.gold[first]
+    wrong_tags = ["O" if t == "ID_stud" else t for t in g["tags"]]
+    records[first] = {**_record(g["episode"], g["step"], refusal="which stud?"), "words": g["words"], "tags": wrong_tags}
+    table = failures(records, field)
+    assert list(table["mistake"]) == ["over_refusal"] and "ID_stud -> O" in table["tags_differ"].iloc[0]
+
+
+def test_check_own_instructions_passes_right_ones_and_names_a_wrong_action():
+    from drywall_lab.field import check_own_instructions
+
+    expected = {"drywall_id": "500320", "stud_id": "500100", "placement": "vertical_left"}
+    good = ["Pick up the full-size drywall and put it on stud 500100.", "panel 500320 on stud 500100",
+            "Put the standard panel on stud 500100, please."]
+    check = check_own_instructions(good, expected)
+    assert check.passed, str(check)
+    wrong = good[:2] + ["panel 500320 on stud 500101"]
+    check = check_own_instructions(wrong, expected)
+    assert not check.passed and "MOVED THE ROBOT WRONGLY" in str(check)
+    check = check_own_instructions(good[:1] * 3, expected)
+    assert not check.passed and "at least 3 different instructions" in str(check)
+
+
+def test_read_ablation(tmp_path):
+    from drywall_lab.nlu.field_study import read_ablation
+
+    table, note = read_ablation(tmp_path / "results" / "field")
+    assert table is None and "experiment field" in note
+    study = tmp_path / "results" / "field"
+    study.mkdir(parents=True)
+    (study / "ablation.csv").write_text("model,kind,test acc_task\nLSTM paper,bilstm-crf,1.0\n")
+    (study / "README.md").write_text("- wall time: 3.0 min\n")
+    table, note = read_ablation(study)
+    assert table.loc["LSTM paper", "test acc_task"] == 1.0 and "1 models" in note and "wall time: 3.0 min" in note
+
+
+def test_the_field_corpus_trains_on_both_training_splits():
+    from drywall_lab.splits import training_rows
+
+    with pytest.raises(ValueError, match="unknown corpus"):
+        training_rows("web")
+    paper = training_rows("paper")
+    assert len(paper) == 1268 and {r["id"][:5] for r in paper} == {"train"}

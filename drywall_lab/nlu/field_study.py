@@ -136,3 +136,17 @@ def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = N
              table.drop(columns=["kind"]).set_index("model").T.to_string(float_format=lambda x: f"{x:.3f}"), "```", ""]
     (out / "README.md").write_text("\n".join(lines), encoding="utf-8")
     return table
+
+
+def read_ablation(study_dir: Path | str | None = None) -> tuple[pd.DataFrame | None, str]:
+    """The ablation table as ``experiment field`` wrote it (one row a model), and a sentence saying where it
+    comes from; ``None`` and a "not run yet" sentence when the study has not been run."""
+    study_dir = Path(study_dir) if study_dir is not None else Path(__file__).resolve().parents[2] / "results" / "field"
+    path = study_dir / "ablation.csv"
+    if not path.is_file():
+        return None, f"The ablation has not been run yet ({path} is missing): `python -m drywall_lab experiment field`."
+    table = pd.read_csv(path).set_index("model")
+    readme = study_dir / "README.md"
+    wall = next((line for line in readme.read_text(encoding="utf-8").splitlines() if "wall time" in line), "") \
+        if readme.is_file() else ""
+    return table, f"{path.relative_to(study_dir.parent.parent)}: {len(table)} models{(', ' + wall.strip('- ')) if wall else ''}."

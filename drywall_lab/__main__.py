@@ -103,18 +103,25 @@ def _cmd_demo(args: argparse.Namespace) -> int:
     return 0
 
 
-def _tagged_words(args: argparse.Namespace) -> tuple[list[str], list[str]]:
-    """The instruction's words and tags: from the markup (``--tagged``) or from a tagger."""
+def _interpretation(args: argparse.Namespace, history: "ActionHistory"):
+    """The instruction's interpretation: its markup's tags through the IM (``--tagged``), or a tagger's
+    readings through the decision layer, as ``run`` decides (``drywall_lab.decision``)."""
     from drywall_lab.corpus import tokenize
     from drywall_lab.corpus.markup import parse
+    from drywall_lab.im import interpret
 
     if args.tagged:
         tokens = [t for t in parse(args.text.replace(",", " , ").replace(".", " . ")) if t.is_word]
-        return [t.word for t in tokens], [t.tag for t in tokens]
+        return interpret([t.word for t in tokens], [t.tag for t in tokens], history)
+    from drywall_lab.decision import decide
     from drywall_lab.pipeline import load_tagger_option
 
+    tagger = load_tagger_option(args.tagger)
     words = tokenize(args.text)
-    return words, load_tagger_option(args.tagger).predict([words])[0]
+    if not hasattr(tagger, "predict_confidence"):
+        return interpret(words, tagger.predict([words])[0], history)
+    confidence = tagger.predict_confidence([words])[0]
+    return decide(words, confidence.kbest, confidence.marginals, tagger.labels, history).interpretation
 
 
 def _cmd_interpret(args: argparse.Namespace) -> int:
@@ -124,16 +131,14 @@ def _cmd_interpret(args: argparse.Namespace) -> int:
     exist unless ``--record`` is given, when a missing file starts a new wall. ``--record`` writes
     an accepted command into the file, whole or not at all.
     """
-    from drywall_lab.im import interpret
-
     _check_text(args.text)
     history_path = Path(args.history) if args.history else None
     if args.record and history_path is None:
         raise ValueError("--record needs --history FILE: the action history CSV to record the command in")
     history = _read_history(history_path, start_new=args.record)
     new_file = history_path is not None and not history_path.exists()
-    words, tags = _tagged_words(args)
-    result = interpret(words, tags, history)
+    result = _interpretation(args, history)
+    words, tags = result.words, result.tags
     print("words and tags:")
     print("  " + " ".join(w if t == "O" else f"{w}/{t}" for w, t in zip(words, tags)))
     print(f"rule trace (history: {len(history)} accepted command(s) before this one):")

@@ -173,3 +173,16 @@ def test_bad_settings_are_refused():
         DecisionSettings(act=1.5)
     with pytest.raises(ValueError, match="k must be at least 1"):
         DecisionSettings(k=0)
+
+
+def test_the_default_settings_are_the_recorded_choice():
+    """DEFAULT_SETTINGS is what benchmarks/decision.py chose (benchmarks/results/decision.md) on generated splits."""
+    import ast
+    import re
+    from dataclasses import asdict
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parent.parent / "benchmarks" / "results" / "decision.md").read_text()
+    chosen = ast.literal_eval(re.search(r"^chosen=(\{.*\})$", text, re.M).group(1))
+    assert chosen == asdict(DEFAULT_SETTINGS)
+    assert "field-validation" in text and "field-novel" in text and "field-set" not in text

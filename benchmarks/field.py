@@ -47,8 +47,9 @@ def field_sets() -> dict[str, Path]:
 
 
 def run_set(directory: Path, tagger) -> tuple[list[dict], pd.DataFrame, float]:
-    """The `run` records of one set, their scores by voice, and the seconds it took."""
-    field_set = read_field_set(directory)
+    """The `run` records of one set, their scores by voice, and the seconds it took (a set without
+    hand-written tags, ``../shared/field``, is scored only)."""
+    field_set = read_field_set(directory, tagged=directory == FIELD_DIR)
     started = time.perf_counter()
     records = list(run_episodes(field_set.episodes, tagger))
     seconds = time.perf_counter() - started

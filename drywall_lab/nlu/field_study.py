@@ -39,7 +39,7 @@ class FieldStudySettings:
     """What to train: ``fast()`` is a quick check (small data, one or two epochs), ``full()`` the study."""
 
     lstm_epochs: dict[str, int] = field(default_factory=lambda: {"paper": 20, "field": 8})
-    bert_epochs: dict[str, int] = field(default_factory=lambda: {"paper": 10, "field": 3})
+    bert_epochs: dict[str, int] = field(default_factory=lambda: {"paper": 10, "field": 2})
     train_sizes: dict[str, int | None] = field(default_factory=lambda: {"paper": None, "field": None})
     evaluation_size: int | None = None
     seed: int = 0

@@ -655,26 +655,12 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
             sentences = add_noise(ch, sentences, spoken)
             if register == "texting":
                 sentences = texting_forms(ch, sentences)
-            text, words, tags, coref = render(ch, sentences, spoken)
-            if not words:
+            said = render(ch, sentences, spoken)
+            if not said[1]:
                 continue
-            rows.append({
-                "id": f"field-{split}-{len(rows):05d}",
-                "text": text,
-                "words": words,
-                "tags": tags,
-                "coref_tags": coref,
-                "n_sentences": len(sentences),
-                "register": register,
-                "context": {"episode": f"field-{split}-ep{episode_no:05d}", "step": step,
-                            "history": [dict(h) for h in ep.history]},
-                "meaning": meaning.describe(),
-                "expected": meaning.expected,
-            })
-            if meaning.expected["refusal"] is None:
-                e = meaning.expected
-                ep.state = ep.state.install(e["drywall_id"], e["stud_id"], e["placement"])
-                ep.history.append({k: e[k] for k in ("drywall_id", "stud_id", "placement")})
+            rows.append(G.corpus_row(f"field-{split}-{len(rows):05d}", said, len(sentences),
+                                     f"field-{split}-ep{episode_no:05d}", step, ep, meaning, register=register))
+            ep.accept(meaning)
         episode_no += 1
     return rows
 

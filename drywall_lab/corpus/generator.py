@@ -106,6 +106,23 @@ class Episode:
     def last(self) -> dict | None:
         return self.history[-1] if self.history else None
 
+    def accept(self, meaning: "Meaning") -> None:
+        """Carry out the meaning's command, if it is one: the panel goes on the wall and into the history."""
+        e = meaning.expected
+        if e["refusal"] is None:
+            self.state = self.state.install(e["drywall_id"], e["stud_id"], e["placement"])
+            self.history.append({k: e[k] for k in ("drywall_id", "stud_id", "placement")})
+
+
+def corpus_row(row_id: str, said: tuple[str, list[str], list[str], list[str]], n_sentences: int, episode_id: str,
+               step: int, ep: Episode, meaning: "Meaning", **extra) -> dict:
+    """One corpus row: ``said`` is ``render``'s (text, words, tags, co-reference tags); ``extra`` fields
+    (the field corpus's ``register``) follow ``n_sentences``."""
+    text, words, tags, coref = said
+    return {"id": row_id, "text": text, "words": words, "tags": tags, "coref_tags": coref, "n_sentences": n_sentences,
+            **extra, "context": {"episode": episode_id, "step": step, "history": [dict(h) for h in ep.history]},
+            "meaning": meaning.describe(), "expected": meaning.expected}
+
 
 # --- choosing a command and its references ------------------------------------------
 def feasible_commands(state: SiteState) -> list[tuple[str, str, str]]:
@@ -614,23 +631,10 @@ def _generate_split_once(split: str, n: int, rng: random.Random, site: Site) -> 
             meaning = refusal_meaning(rng, ep) if refuse else command_meaning(rng, ep)
             if meaning is None:
                 break
-            text, words, tags, coref = render(ch, sentences_for(ch, meaning, counts[len(rows)]))
-            rows.append({
-                "id": f"{split}-{len(rows):04d}",
-                "text": text,
-                "words": words,
-                "tags": tags,
-                "coref_tags": coref,
-                "n_sentences": counts[len(rows)],
-                "context": {"episode": f"{split}-ep{episode_no:04d}", "step": step,
-                            "history": [dict(h) for h in ep.history]},
-                "meaning": meaning.describe(),
-                "expected": meaning.expected,
-            })
-            if meaning.expected["refusal"] is None:
-                e = meaning.expected
-                ep.state = ep.state.install(e["drywall_id"], e["stud_id"], e["placement"])
-                ep.history.append({k: e[k] for k in ("drywall_id", "stud_id", "placement")})
+            said = render(ch, sentences_for(ch, meaning, counts[len(rows)]))
+            rows.append(corpus_row(f"{split}-{len(rows):04d}", said, counts[len(rows)], f"{split}-ep{episode_no:04d}",
+                                   step, ep, meaning))
+            ep.accept(meaning)
         episode_no += 1
     return rows
 

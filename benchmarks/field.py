@@ -72,7 +72,7 @@ def shared_score(records: list[dict]) -> str:
 def describe_tagger(option: str | None, tagger) -> str:
     info = getattr(tagger, "training_info", {}) or {}
     where = option or "the shipped default tagger (drywall_lab/models/default_tagger)"
-    extra = f", trained on {info['n_train']} instructions" if "n_train" in info else ""
+    extra = f", trained on {info['n_train_instructions']} instructions" if "n_train_instructions" in info else ""
     return f"{where}: {tagger.kind}{extra}"
 
 

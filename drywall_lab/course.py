@@ -1,4 +1,4 @@
-"""Helpers for the course notebooks 01-04 (issue 13): the fast-mode switch, tables, the study's results, exercise checks.
+"""Helpers for the course notebooks 01-04 (issue 13): fast mode, tables, the study's results, exercise checks.
 
 - :func:`fast_mode`: the one reading of ``DRYWALL_FAST`` every notebook uses (README, "Fast mode").
 - Tables that read well both as HTML and as text: :func:`percent_table`, :func:`table_3` (the paper's
@@ -67,7 +67,8 @@ def fast_mode() -> bool:
         return False
     raise ValueError(
         f"DRYWALL_FAST={os.environ['DRYWALL_FAST']!r} is not understood: use one of "
-        f"{', '.join(FAST_ON)} for fast mode or {', '.join(v for v in FAST_OFF if v)} (or leave it unset) for full mode"
+        f"{', '.join(FAST_ON)} for fast mode or {', '.join(v for v in FAST_OFF if v)} (or leave it unset) "
+        "for full mode"
     )
 
 
@@ -107,13 +108,32 @@ def table_3(taggers: Mapping[str, "Tagger"], rows: Sequence[Mapping]) -> pd.Data
     return pd.DataFrame([table_3_row(name, tagger, rows) for name, tagger in taggers.items()]).set_index("model")
 
 
-def scores_on_sets(tagger: "Tagger", sets: Sequence[str]) -> pd.DataFrame:
-    """Table 3 (plus ``acc_task``) of one tagger on named sets (``drywall_lab.splits``), one row per set."""
+def describe_tagger(tagger: "Tagger") -> str:
+    """One sentence saying what a trained tagger is and what it was trained on, from its own record
+    (``training_info``, saved with it): the notebooks never assume which tagger is shipped."""
+    info = tagger.training_info
+    kind = {"bilstm-crf": "a BiLSTM-CRF", "bert": "a fine-tuned BERT-family encoder"}.get(tagger.kind, tagger.kind)
+    features = " reading characters as well as words" if getattr(tagger, "uses_characters", False) else ""
+    text = f"{kind}{features} with {tagger.n_parameters():,} parameters"
+    if "n_train_instructions" in info and "epochs" in info:
+        text += f", trained on {info['n_train_instructions']:,} instructions for {info['epochs']} epochs"
+        if "n_validation_instructions" in info:
+            text += f" (validated on {info['n_validation_instructions']:,})"
+        if info.get("wall_seconds") is not None:
+            text += f" in {info['wall_seconds']:.0f} s"
+    return text + "."
+
+
+def scores_on_sets(tagger: "Tagger", sets: Sequence[str], limit: int | None = None) -> pd.DataFrame:
+    """Table 3 (plus ``acc_task``) of one tagger on named sets (``drywall_lab.splits``), one row per set; on the
+    first ``limit`` instructions of each set when given (the notebooks' fast mode)."""
     from drywall_lab.splits import split_rows
 
+    if limit is not None and limit < 1:
+        raise ValueError(f"limit must be at least 1, got {limit}")
     records = []
     for name in sets:
-        rows = split_rows(name)
+        rows = split_rows(name)[:limit]
         records.append({"instructions": len(rows)} | table_3_row(name, tagger, rows))
     frame = pd.DataFrame(records)
     return frame.rename(columns={"model": "set"}).set_index("set")
@@ -148,7 +168,8 @@ def study_settings(study_dir: Path | str = STUDY_DIR) -> dict:
     """The settings the study ran with, as its ``README.md`` records them (train sizes, epochs, learning rate)."""
     path = Path(study_dir) / "README.md"
     if not path.is_file():
-        raise FileNotFoundError(f"{path} does not exist: run `python -m drywall_lab experiment paper --out {study_dir}`")
+        raise FileNotFoundError(f"{path} does not exist: run "
+                                f"`python -m drywall_lab experiment paper --out {study_dir}`")
     match = re.search(r"Settings: `(\{.*?\})`", path.read_text(encoding="utf-8"))
     if not match:
         raise ValueError(f"{path} does not record the study's settings (no 'Settings: `{{...}}`' line)")
@@ -158,6 +179,9 @@ def study_settings(study_dir: Path | str = STUDY_DIR) -> dict:
 def study_provenance(study_dir: Path | str = STUDY_DIR) -> str:
     """The line of the study's README saying where and how long it ran."""
     path = Path(study_dir) / "README.md"
+    if not path.is_file():
+        raise FileNotFoundError(f"{path} does not exist: run "
+                                f"`python -m drywall_lab experiment paper --out {study_dir}`")
     for line in path.read_text(encoding="utf-8").splitlines():
         if line.startswith("Machine"):
             return line.split(" Settings:")[0]
@@ -188,7 +212,8 @@ def accuracy_by_training_size(table3: pd.DataFrame, train_sizes: Mapping[str, in
                         "Acc_inst": r["Acc_inst"], "paper": r.get("paper_Acc_inst", np.nan), "N_l": r["N_l"]})
     long = pd.DataFrame(records)
     wide = long.pivot(index="training instructions", columns="tagger", values="Acc_inst")
-    paper = long.pivot(index="training instructions", columns="tagger", values="paper").add_suffix(" (paper)")
+    paper = long.pivot(index="training instructions", columns="tagger", values="paper")
+    paper = paper.rename(columns=PAPER_TAGGER_NAMES)
     wrong = long.pivot(index="training instructions", columns="tagger", values="N_l").add_prefix("N_l ")
     return pd.concat([wide, paper, wrong], axis=1).sort_index(ascending=False)
 
@@ -202,8 +227,8 @@ def plot_accuracy_by_training_size(frame: pd.DataFrame, ax: "plt.Axes | None" = 
     for i, name in enumerate(TAGGER_NAMES.values()):
         if name in frame:
             ax.plot(frame.index, frame[name], marker="o", color=f"C{i}", label=f"{name}, this study")
-        if f"{name} (paper)" in frame:
-            ax.plot(frame.index, frame[f"{name} (paper)"], marker="s", ls="--", color=f"C{i}", alpha=0.6,
+        if PAPER_TAGGER_NAMES[name] in frame:
+            ax.plot(frame.index, frame[PAPER_TAGGER_NAMES[name]], marker="s", ls="--", color=f"C{i}", alpha=0.6,
                     label=PAPER_TAGGER_NAMES[name])
     ax.set_xticks(list(frame.index))
     ax.set_xlabel("training instructions")
@@ -233,9 +258,10 @@ def data_efficiency_finding(table3: pd.DataFrame, train_sizes: Mapping[str, int]
     text = (f"With {n} training instructions the BiLSTM-CRF gets {_pct(row[lstm])} of the {n_validation} validation "
             f"instructions entirely right and MiniLM {_pct(row[bert])}")
     paper_gap = None
-    if pd.notna(row.get(f"{lstm} (paper)")) and pd.notna(row.get(f"{bert} (paper)")):
-        paper_gap = round((row[f"{bert} (paper)"] - row[f"{lstm} (paper)"]) * n_validation)
-        text += f" (the paper: {_pct(row[f'{lstm} (paper)'])} and {_pct(row[f'{bert} (paper)'])})"
+    paper_lstm, paper_bert = (row.get(PAPER_TAGGER_NAMES[name]) for name in (lstm, bert))
+    if pd.notna(paper_lstm) and pd.notna(paper_bert):
+        paper_gap = round((paper_bert - paper_lstm) * n_validation)
+        text += f" (the paper, with bert-base: {_pct(paper_lstm)} and {_pct(paper_bert)})"
     text += ". "
     if abs(ours) <= 2:
         text += (f"Here the two are within {abs(ours)} instruction{'s' if abs(ours) != 1 else ''} of each other: "
@@ -293,7 +319,8 @@ def coref_comparison(table3: pd.DataFrame, table5: pd.DataFrame, train_sizes: Ma
     return wide.sort_index(ascending=False)
 
 
-def coref_finding(table3: pd.DataFrame, table5: pd.DataFrame, train_sizes: Mapping[str, int], n_validation: int) -> str:
+def coref_finding(table3: pd.DataFrame, table5: pd.DataFrame, train_sizes: Mapping[str, int],
+                  n_validation: int) -> str:
     """What the co-reference labels change, in words computed from Tables 3 and 5 of the study."""
     frame = coref_comparison(table3, table5, train_sizes)
     behind = [n for n in frame.index if frame.loc[n, "Acc_inst BERT-C"] < frame.loc[n, "Acc_inst BERT-M"]]
@@ -304,7 +331,8 @@ def coref_finding(table3: pd.DataFrame, table5: pd.DataFrame, train_sizes: Mappi
             f"{len(ahead)} of the {len(frame)} training sizes; with {n} instructions the co-reference model gets "
             f"{abs(diff)} instruction{'s' if abs(diff) != 1 else ''} {'fewer' if diff >= 0 else 'more'} right")
     if frame[["paper Acc_inst BERT-M", "paper Acc_inst BERT-C"]].notna().all().all():
-        paper_diff = round((frame.loc[n, "paper Acc_inst BERT-M"] - frame.loc[n, "paper Acc_inst BERT-C"]) * n_validation)
+        paper_diff = round((frame.loc[n, "paper Acc_inst BERT-M"] - frame.loc[n, "paper Acc_inst BERT-C"])
+                           * n_validation)
         text += f" (the paper: {abs(paper_diff)} {'fewer' if paper_diff >= 0 else 'more'})"
     return text + "."
 
@@ -338,16 +366,20 @@ def minilm_learning_rate_choice(results: Path | str = BENCHMARK_RESULTS / "bert_
             lines.append(f"The rule ({module.RULE}) picks {chosen:g} on the grid recorded in "
                          f"{results.relative_to(REPO_ROOT) if results.is_relative_to(REPO_ROOT) else results}"
                          + (": the same." if chosen == MINILM_LEARNING_RATE
-                            else f": NOT the library's {MINILM_LEARNING_RATE:g}; the recorded grid and the code disagree."))
+                            else f": NOT the library's {MINILM_LEARNING_RATE:g}; the recorded grid and the code "
+                                 "disagree."))
     try:
         ran_at = study_settings(study_dir).get("bert_learning_rate")
     except (FileNotFoundError, ValueError) as e:
         lines.append(f"The study's settings could not be read: {e}")
     else:
-        if ran_at == MINILM_LEARNING_RATE:
+        if ran_at is None:
+            lines.append("The study's settings do not record a MiniLM learning rate.")
+        elif ran_at == MINILM_LEARNING_RATE:
             lines.append(f"The committed study (results/paper) ran MiniLM at {ran_at:g}, this choice.")
         else:
-            lines.append(f"The committed study (results/paper) ran MiniLM at {ran_at:g}, not at {MINILM_LEARNING_RATE:g}: "
+            lines.append(f"The committed study (results/paper) ran MiniLM at {ran_at:g}, "
+                         f"not at {MINILM_LEARNING_RATE:g}: "
                          "its BERT rows predate the current choice until `python -m drywall_lab experiment paper` "
                          "is run again.")
     return table, "\n".join(lines)
@@ -370,7 +402,8 @@ def field_results(path: Path | str = BENCHMARK_RESULTS / "field.md") -> tuple[pd
         return None, f"{path} has no summary lines (<set>_accuracy=...)."
     table = pd.DataFrame(records).pivot(index="set", columns="figure", values="value")
     tagger = re.search(r"\*\*Tagger:\*\* (.+)", text)
-    return table, f"Recorded in {path.name}" + (f" with the tagger {tagger.group(1)}." if tagger else ".")
+    return table, (f"Recorded in {path.name} (the whole pipeline, the decision layer included)"
+                   + (f"; tagger: {tagger.group(1)}." if tagger else "."))
 
 
 # --- exercises -------------------------------------------------------------------------------------------------
@@ -560,7 +593,7 @@ def check_most_forbidden(most_forbidden: Callable[[pd.DataFrame, int], Sequence[
             return ExerciseCheck(False, messages + [f"on {name} (k = {k}) your function returned {returned!r}: "
                                                     "return a list of (tag before, tag after) pairs"])
         if got == want:
-            messages.append(f"{name}, k = {k}: right, {want}")
+            messages.append(f"{name}, k = {k}: right")
             continue
         problem = f"on {name} (k = {k}) you returned {got}, the lowest scores are {want}"
         if len(got) != k:
@@ -656,30 +689,36 @@ def check_vote(vote: Callable[[list[str], list[int | None], int], Sequence[str]]
 def token_predictions(tagger: "Tagger", words: Sequence[str]) -> pd.DataFrame:
     """A trained ``BertTagger``'s view of one instruction: each sub-word token, the word it belongs to and the
     tag the model gives it, through the tagger's own prediction path (``predict`` votes these into word tags)."""
+    return _token_tables(tagger, [list(words)])[0]
+
+
+def _token_tables(tagger: "Tagger", sentences: Sequence[Sequence[str]]) -> list[pd.DataFrame]:
+    """``token_predictions`` for many instructions, in batches (``BertTagger._token_logits``, as ``predict`` does):
+    a long instruction cut into pieces comes back as one table, its word ids counted from its first word."""
     import torch
 
     from drywall_lab.nlu.base import check_sentences
 
-    sentences = check_sentences([list(words)])
+    sentences = check_sentences(sentences)
     tagger._check_trained("token_predictions")
-    records, offset = [], 0
+    records: list[list[dict]] = [[] for _ in sentences]
+    offsets = [0] * len(sentences)
     with torch.inference_mode():
-        for _, items, logits in tagger._token_logits(sentences, batch_size=64):
-            for item, row in zip(items, logits.argmax(-1).tolist()):
+        for owners, items, logits in tagger._token_logits(sentences, batch_size=64):
+            for owner, item, row in zip(owners, items, logits.argmax(-1).tolist()):
                 tokens = tagger.tokenizer.convert_ids_to_tokens(item["features"]["input_ids"])
                 for token, word, label in zip(tokens, item["word_ids"], row):
-                    records.append({"token": token, "word id": None if word is None else word + offset,
-                                    "token tag": tagger.labels[label]})
-                offset += item["n_words"]
-    return pd.DataFrame(records, dtype=object)
+                    records[owner].append({"token": token, "word id": None if word is None else word + offsets[owner],
+                                           "token tag": tagger.labels[label]})
+                offsets[owner] += item["n_words"]
+    return [pd.DataFrame(r, columns=["token", "word id", "token tag"], dtype=object) for r in records]
 
 
 def vote_statistics(tagger: "Tagger", rows: Sequence[Mapping]) -> dict[str, int]:
     """How often the vote has work to do on ``rows``: words of several tokens, those whose tokens disagree, and
     those with no strict majority (decided by the first token)."""
     counts = {"words of several tokens": 0, "tokens disagree": 0, "no strict majority": 0}
-    for row in rows:
-        table = token_predictions(tagger, row["words"])
+    for table in _token_tables(tagger, [row["words"] for row in rows]):
         for _, tags in table.dropna(subset=["word id"]).groupby("word id")["token tag"]:
             tags = list(tags)
             if len(tags) > 1:
@@ -761,7 +800,8 @@ def check_relative_stud(relative_stud: Callable[["Site", str, str, int], str | N
         seen.add(kind)
         said = " ".join(words_and_tags(markup)[0])
         result = f"raised {error}" if error else repr(got)
-        messages.append(f"'{said}': the rules give {repr(want) if want else 'no stud (' + why + ')'}, your function {result}"
+        rules = repr(want) if want else f"no stud ({why})"
+        messages.append(f"'{said}': the rules give {rules}, your function {result}"
                         + (f"; {hint}" if hint else ""))
     return ExerciseCheck(False, messages)
 

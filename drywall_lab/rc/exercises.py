@@ -13,12 +13,13 @@ and if not, why not.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable, Sequence
 
 import numpy as np
 
 from drywall_lab.corpus.io import tokenize
+from drywall_lab.course import ExerciseCheck
 from drywall_lab.im import ActionHistory, RobotCommand
 from drywall_lab.pipeline import WordTagger
 from drywall_lab.rc.cell import RobotCell
@@ -29,16 +30,11 @@ from drywall_lab.site import Installed, SiteState, default_site
 
 
 @dataclass
-class ExerciseCheck:
-    """What a check found: ``passed``, and one message a line saying what is right or what is not and why."""
+class SimulationCheck(ExerciseCheck):
+    """An exercise check (``drywall_lab.course.ExerciseCheck``) that also keeps what it simulated."""
 
-    passed: bool
-    messages: list[str] = field(default_factory=list)
     result: PlacementResult | None = None  #: the placement the check simulated (servo gains)
     run: EpisodeRun | None = None  #: the episode the check simulated (layout)
-
-    def __str__(self) -> str:
-        return "\n".join([("PASSED" if self.passed else "NOT YET") + ":"] + [f"- {m}" for m in self.messages])
 
 
 # --- notebook 05: servo gains -------------------------------------------------------------------------------
@@ -99,7 +95,7 @@ def explain_failure(result: PlacementResult) -> str:
 
 
 def check_servo_gains(softer: Callable[[ServoGains, float], ServoGains], kp_scale: float,
-                      command: RobotCommand | None = None) -> ExerciseCheck:
+                      command: RobotCommand | None = None) -> SimulationCheck:
     """Notebook 05's exercise: ``softer(gains, scale)`` as the student wrote it, and the student's scale.
 
     Checks ``softer`` against the damping rule (``reference_softer``) on every joint, then the scale
@@ -108,13 +104,13 @@ def check_servo_gains(softer: Callable[[ServoGains, float], ServoGains], kp_scal
     not, why not.
     """
     if isinstance(kp_scale, bool) or not isinstance(kp_scale, (int, float)) or not math.isfinite(kp_scale):
-        return ExerciseCheck(False, [f"the scale must be a number, not {kp_scale!r}"])
+        return SimulationCheck(False, [f"the scale must be a number, not {kp_scale!r}"])
     if not 0 < kp_scale <= SOFTEST_ASKED:
-        return ExerciseCheck(False, [f"the exercise asks for softer servos: a kp scale above 0 and at most "
+        return SimulationCheck(False, [f"the exercise asks for softer servos: a kp scale above 0 and at most "
                                      f"{SOFTEST_ASKED:g}, not {kp_scale:g}"])
     problems = _gain_problems(softer)
     if problems:
-        return ExerciseCheck(False, problems)
+        return SimulationCheck(False, problems)
     site = default_site()
     command = command or RobotCommand.build(site, "500320", "500100", "vertical_left")
     cell = RobotCell(servo_gains={name: softer(SERVOS[name], kp_scale) for name in JOINTS})
@@ -128,7 +124,7 @@ def check_servo_gains(softer: Callable[[ServoGains, float], ServoGains], kp_scal
                         f"{math.degrees(float(np.max(tracking[1:]))):.2f} deg on the arm")
     else:
         messages.append(f"not placed within tolerance: {explain_failure(result)}; try a stiffer scale")
-    return ExerciseCheck(result.success, messages, result=result)
+    return SimulationCheck(result.success, messages, result=result)
 
 
 # --- notebook 06: a wall of your own -------------------------------------------------------------------------
@@ -158,7 +154,7 @@ def _describe(state: SiteState, item: Installed) -> str:
             f"(x {item.rect.x_left:.2f}..{item.rect.x_right:.2f} m)")
 
 
-def check_layout(instructions: Sequence[str], tagger: WordTagger, target: SiteState | None = None) -> ExerciseCheck:
+def check_layout(instructions: Sequence[str], tagger: WordTagger, target: SiteState | None = None) -> SimulationCheck:
     """Notebook 06's exercise: do the student's ``instructions`` build the ``target`` wall (``exercise_wall()``)?
 
     Each instruction is tagged and interpreted in order, as ``run`` would; every command is compared with
@@ -168,7 +164,7 @@ def check_layout(instructions: Sequence[str], tagger: WordTagger, target: SiteSt
     """
     target = target if target is not None else exercise_wall()
     if isinstance(instructions, str) or not all(isinstance(i, str) and i.strip() for i in instructions):
-        return ExerciseCheck(False, ["give a list of instructions, each a non-empty string"])
+        return SimulationCheck(False, ["give a list of instructions, each a non-empty string"])
     instructions = list(instructions)
     wanted = {_piece(target, i): i for i in target.installed}
     history = ActionHistory(target.site)
@@ -197,7 +193,7 @@ def check_layout(instructions: Sequence[str], tagger: WordTagger, target: SiteSt
         messages += [f"still missing: {_describe(target, i)}" for i in missing]
     if wrong:
         messages.append("the robot was not run: the instructions do not build the wall yet")
-        return ExerciseCheck(False, messages)
+        return SimulationCheck(False, messages)
     run = simulate_episode({"id": "your wall", "instructions": instructions}, tagger)
     failed = [s for s in run.steps if s.status != "placed"]
     for s in failed:
@@ -207,4 +203,4 @@ def check_layout(instructions: Sequence[str], tagger: WordTagger, target: SiteSt
         worst = max(r.position_error_mm for r in run.placements)
         messages.append(f"the simulated robot built the wall: {len(run.placements)} panels, every one within "
                         f"tolerance (largest error {worst:.2f} mm of {POSITION_TOLERANCE * 1000:g} mm), nothing hit")
-    return ExerciseCheck(not failed, messages, run=run)
+    return SimulationCheck(not failed, messages, run=run)

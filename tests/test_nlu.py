@@ -248,10 +248,13 @@ def test_the_default_tagger_is_shipped_small_and_accurate() -> None:
     tagger = load_tagger(DEFAULT_TAGGER_DIR)
     assert isinstance(tagger, BiLstmCrfTagger) and tagger.labels == list(TAGS)
     assert tagger.n_parameters() == json.loads((DEFAULT_TAGGER_DIR / "tagger.json").read_text())["n_parameters"]
-    # saved before character features existed: it loads as the paper's network, without them
-    assert not tagger.uses_characters and tagger.network.char_cnn is None and tagger.device == "cpu"
+    # the field tagger (make default-tagger, drywall_lab/nlu/field_study.py DEFAULT_FIELD_TAGGER): characters on
+    from drywall_lab.nlu.field_study import DEFAULT_FIELD_TAGGER
+
+    assert tagger.uses_characters and tagger.network.char_cnn is not None and tagger.device == "cpu"
     assert sum(f.stat().st_size for f in DEFAULT_TAGGER_DIR.iterdir()) < 4_000_000
-    assert len(tagger.history) == 20
+    assert len(tagger.history) == DEFAULT_FIELD_TAGGER["epochs"] and tagger.batch_size == DEFAULT_FIELD_TAGGER["batch_size"]
+    assert tagger.training_info["n_train_instructions"] == len(read_split("train")) + 20000
     test_scores = tagger.evaluate(read_split("test"))
     assert test_scores.acc_inst >= 0.994
     assert test_scores.acc_word >= 0.999
@@ -716,7 +719,9 @@ def test_evaluate_command(capsys) -> None:
     assert out[-1] == "acc_word=1.0000 acc_inst=1.0000 n_instructions=158 acc_task=1.0000"
     assert _run(["evaluate", "--split", "test"]) == 0
     out = capsys.readouterr().out.strip().splitlines()
-    assert re.fullmatch(r"acc_word=\d\.\d{4} acc_inst=\d\.\d{4} n_instructions=158 acc_task=\d\.\d{4}", out[-1])
+    assert re.fullmatch(r"acc_word=\d\.\d{4} acc_inst=\d\.\d{4} n_instructions=158 acc_task=\d\.\d{4} "
+                        r"acc_decided=\d\.\d{4} wrong_action_rate=\d\.\d{4} over_refusal_rate=\d\.\d{4} "
+                        r"coverage=\d\.\d{4}", out[-1])
     assert any(line.startswith("Vr_md") for line in out)  # the per-tag table
 
 

@@ -113,15 +113,10 @@ def _interpretation(args: argparse.Namespace, history: "ActionHistory"):
     if args.tagged:
         tokens = [t for t in parse(args.text.replace(",", " , ").replace(".", " . ")) if t.is_word]
         return interpret([t.word for t in tokens], [t.tag for t in tokens], history)
-    from drywall_lab.decision import decide
+    from drywall_lab.decision import interpret_instruction
     from drywall_lab.pipeline import load_tagger_option
 
-    tagger = load_tagger_option(args.tagger)
-    words = tokenize(args.text)
-    if not hasattr(tagger, "predict_confidence"):
-        return interpret(words, tagger.predict([words])[0], history)
-    confidence = tagger.predict_confidence([words])[0]
-    return decide(words, confidence.kbest, confidence.marginals, tagger.labels, history).interpretation
+    return interpret_instruction(tokenize(args.text), load_tagger_option(args.tagger), history)
 
 
 def _cmd_interpret(args: argparse.Namespace) -> int:

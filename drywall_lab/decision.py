@@ -282,6 +282,24 @@ def decide_tags(words: Sequence[str], tags: Sequence[str], labels: Sequence[str]
     return decide(words, [(list(tags), 0.0)], marginals, labels, history)
 
 
+# --- one instruction, whole episodes ----------------------------------------------------------------------
+def decide_instruction(words: Sequence[str], tagger, history: ActionHistory,
+                       settings: DecisionSettings = DEFAULT_SETTINGS) -> Decision:
+    """The decision for one instruction's words: the tagger's readings (``predict_confidence``), then ``decide``."""
+    confidence = tagger.predict_confidence([list(words)], k=settings.k)[0]
+    return decide(list(words), confidence.kbest, confidence.marginals, tagger.labels, history, settings)
+
+
+def interpret_instruction(words: Sequence[str], tagger, history: ActionHistory,
+                          settings: DecisionSettings | None = None) -> Interpretation:
+    """One instruction as ``run`` interprets it against ``history``: a tagger with confidence through the
+    decision layer (``settings``, the defaults when None), any other tagger's best tags through the IM rules.
+    Nothing is recorded."""
+    if hasattr(tagger, "predict_confidence"):
+        return decide_instruction(words, tagger, history, settings or DEFAULT_SETTINGS).interpretation
+    return im_interpret(list(words), tagger.predict([list(words)])[0], history)
+
+
 # --- whole episodes --------------------------------------------------------------------------------------
 def decide_episode(instructions: Sequence[Sequence[str]], tagger, settings: DecisionSettings = DEFAULT_SETTINGS,
                    history: ActionHistory | None = None) -> list[Decision]:

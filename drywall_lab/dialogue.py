@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import Callable, TextIO
 
 from drywall_lab.corpus.io import tokenize
-from drywall_lab.decision import DEFAULT_SETTINGS, Decision, DecisionSettings, decide
+from drywall_lab.decision import DEFAULT_SETTINGS, Decision, DecisionSettings, decide_instruction
 from drywall_lab.im import ActionHistory, RobotCommand
 from drywall_lab.site import STACK_NAMES, FOOT, Site, SiteState, default_site
 
@@ -81,9 +81,7 @@ class Dialogue:
         words = tokenize(text)
         if not words:
             return Reply("I did not hear an instruction: which panel should I pick, and which stud does it go on?")
-        confidence = self.tagger.predict_confidence([words], k=self.settings.k)[0]
-        decision = decide(words, confidence.kbest, confidence.marginals, self.tagger.labels, self.history,
-                          self.settings)
+        decision = decide_instruction(words, self.tagger, self.history, self.settings)
         if decision.acted:
             return self._act(decision.command)
         if decision.action == "ask":

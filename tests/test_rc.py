@@ -678,7 +678,7 @@ def test_each_instruction_is_decided_as_run_decides_it(site):
     from drywall_lab.im import ActionHistory
     from drywall_lab.nlu import default_tagger
     from drywall_lab.pipeline import run_episode
-    from drywall_lab.rc.episode import interpret_instruction
+    from drywall_lab.decision import interpret_instruction
 
     episode = {"id": "e", "instructions": [
         "Pick up the full-size drywall and put it on stud 500100.", "Take panel 500300 and put it on stud 500104.",

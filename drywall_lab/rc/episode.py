@@ -23,19 +23,18 @@ history and the robot cell's site state therefore always agree while the episode
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Mapping, Sequence
+from typing import Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 
 from drywall_lab.corpus import tokenize
-from drywall_lab.im import ActionHistory, InformationMapper, Interpretation, interpret
+from drywall_lab.decision import interpret_instruction
+from drywall_lab.im import ActionHistory, InformationMapper, Interpretation
 from drywall_lab.pipeline import WordTagger
 from drywall_lab.rc.cell import RobotCell
 from drywall_lab.rc.placement import PlacementResult
 
-if TYPE_CHECKING:
-    from drywall_lab.decision import DecisionSettings
 
 PLACED, FAILED, REFUSED, NOT_CARRIED_OUT = "placed", "failed", "refused", "not carried out"
 
@@ -177,22 +176,6 @@ def history_of(cell: RobotCell) -> ActionHistory:
     if history.state != cell.state:
         raise ValueError("the robot cell's site state is not one an action history leads to")
     return history
-
-
-def interpret_instruction(words: Sequence[str], tagger: WordTagger, history: ActionHistory,
-                          settings: DecisionSettings | None = None) -> Interpretation:
-    """One instruction's words through the tagger and IM against ``history``, as ``run`` does it
-    (``drywall_lab.pipeline.run_episode``): a tagger with confidence (``predict_confidence``) goes through
-    the decision layer (``drywall_lab.decision``, with ``settings``, its defaults when None), any other is
-    mapped on its best tags. Nothing is recorded."""
-    words = list(words)
-    if hasattr(tagger, "predict_confidence"):
-        from drywall_lab.decision import DEFAULT_SETTINGS, decide
-
-        settings = settings or DEFAULT_SETTINGS
-        confidence = tagger.predict_confidence([words], k=settings.k)[0]
-        return decide(words, confidence.kbest, confidence.marginals, tagger.labels, history, settings).interpretation
-    return interpret(words, tagger.predict([words])[0], history)
 
 
 def simulate_episode(episode: Mapping, tagger: WordTagger | None = None, record_fps: float | None = None,

@@ -23,7 +23,8 @@ from drywall_lab.course import ExerciseCheck
 from drywall_lab.im import ActionHistory, RobotCommand
 from drywall_lab.pipeline import WordTagger
 from drywall_lab.rc.cell import RobotCell
-from drywall_lab.rc.episode import EpisodeRun, interpret_instruction, simulate_episode
+from drywall_lab.decision import interpret_instruction
+from drywall_lab.rc.episode import EpisodeRun, simulate_episode
 from drywall_lab.rc.placement import ANGLE_TOLERANCE_DEG, POSITION_TOLERANCE, PlacementResult
 from drywall_lab.rc.robot import JOINTS, SERVOS, ServoGains
 from drywall_lab.site import Installed, SiteState, default_site

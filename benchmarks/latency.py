@@ -31,7 +31,7 @@ results file itself (``--out``, default ``benchmarks/results/latency.md``): the 
 the exact command, the load of every run, every run's figures and their medians.
 
 Run from the repository root: ``python benchmarks/latency.py [--bert DIR] [--repeats N]``; the last
-line printed reads ``lstm_p50_ms=... minilm_p50_ms=... bert_base_p50_ms=...`` (single-instruction
+line printed reads ``lstm_p50_ms=... lstm_decided_p50_ms=... minilm_p50_ms=... bert_base_p50_ms=...`` (single-instruction
 p50, median over the runs). ``--quick`` is a seconds-long check of the script itself (a few
 instructions, two runs): its figures mean nothing.
 """

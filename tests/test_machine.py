@@ -232,19 +232,13 @@ def last_summary(text: str, pattern: str) -> str:
     return found[-1]
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="benchmarks/results/latency.md is still assembled by hand: run "
-                   "`python benchmarks/latency.py`, quote its last line in the README, then drop this mark")
 def test_readme_quotes_the_latency_results() -> None:
     text = (REPO / "benchmarks" / "results" / "latency.md").read_text(encoding="utf-8")
     assert "Written by `python benchmarks/latency.py" in text and "--quick" not in text.split("\n", 3)[2]
-    line = last_summary(text, r"lstm_p50_ms=\S+ minilm_p50_ms=\S+ bert_base_p50_ms=\S+")
+    line = last_summary(text, r"lstm_p50_ms=\S+ lstm_decided_p50_ms=\S+ minilm_p50_ms=\S+ bert_base_p50_ms=\S+")
     assert f"`{line}`" in README.read_text(encoding="utf-8")
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="benchmarks/results/placement.md is one run written by the old script: run "
-                   "`python benchmarks/placement.py`, quote its summary line in the README, then drop this mark")
 def test_readme_quotes_the_placement_results() -> None:
     text = (REPO / "benchmarks" / "results" / "placement.md").read_text(encoding="utf-8")
     assert "Written by `python benchmarks/placement.py" in text and "--quick" not in text.split("\n", 3)[2]

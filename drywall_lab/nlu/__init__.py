@@ -47,6 +47,7 @@ _EXPORTS = {
     "CHAR_FEATURES": "drywall_lab.nlu.bilstm_crf",
     "character_vocabulary": "drywall_lab.nlu.bilstm_crf",
     "word_characters": "drywall_lab.nlu.bilstm_crf",
+    "crf_confidence": "drywall_lab.nlu.bilstm_crf",
     "crf_kbest": "drywall_lab.nlu.bilstm_crf",
     "crf_log_partition": "drywall_lab.nlu.bilstm_crf",
     "crf_marginals": "drywall_lab.nlu.bilstm_crf",
@@ -79,7 +80,7 @@ __all__ = [
     "TaggerNotTrainedError", "labels_for", "load_tagger", "seed_everything", "DEFAULT_ENCODER", "PAPER_ENCODER",
     "BertTagger", "EncoderNotFoundError", "default_encoder_path", "split_into_pieces", "subword_marginals",
     "beam_kbest", "vote_word_tags", "BiLstmCrfTagger", "CHAR_FEATURES", "character_vocabulary", "word_characters",
-    "crf_kbest", "crf_log_partition", "crf_marginals", "crf_sequence_scores", "fallback_token", "word_key",
+    "crf_confidence", "crf_kbest", "crf_log_partition", "crf_marginals", "crf_sequence_scores", "fallback_token", "word_key",
     "DEFAULT_TAGGER_DIR", "default_tagger", "TaggingScores", "acc_inst", "acc_word", "confusion_pairs",
     "count_instruction_errors", "count_word_errors", "error_examples", "instruction_errors", "score_tagging", "tag_error_table",
 ]

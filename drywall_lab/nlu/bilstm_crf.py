@@ -31,7 +31,8 @@ its characters, which is what teaches the network to read them.
 **Confidence** (issue 12). ``predict_marginals`` runs the forward-backward algorithm over
 the CRF's emission, start, end and transition scores (``crf_marginals``);
 ``predict_kbest`` is an exact k-best (list) Viterbi (``crf_kbest``), each sequence's
-log-probability being its score minus log Z. Both work in log space (``torch.logsumexp``).
+log-probability being its score minus log Z. Both run in float64 NumPy, the forward-backward
+with a scale factor per word (exact to rounding; a log-space fallback for extreme scores).
 """
 from __future__ import annotations
 
@@ -216,39 +217,93 @@ def _crf_parts(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor):
     )
 
 
-def _forward_backward(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor):
-    """(alpha, beta, log Z): log-space forward and backward scores, (batch, time, tags) each, and (batch,)."""
+def _numpy_parts(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor):
+    """``_crf_parts`` as float64 NumPy arrays: these loops run one small step per word, where NumPy's
+    per-call cost is a fraction of torch's (the decision layer's latency, issue 12)."""
     e, mask, start, end, trans = _crf_parts(crf, emissions, mask)
+    return tuple(x.detach().cpu().numpy() for x in (e, mask, start, end, trans))
+
+
+def _forward_backward(e: np.ndarray, mask: np.ndarray, start: np.ndarray, end: np.ndarray,
+                      trans: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(marginals, log Z): forward-backward with a scale factor at every word (Rabiner's scaling).
+
+    Scores are exponentiated after subtracting their maximum (per word for the emissions), the
+    forward vector is renormalised to sum 1 at each word and the logs of the factors are summed:
+    log Z is exact to rounding, and no quantity under- or overflows unless one step's scores
+    span more than about 700 nats, in which case the log-space recursion is used instead.
+    """
+    batch, time, n_tags = e.shape
+    shift = e.max(axis=2)
+    emit = np.exp(e - shift[:, :, None])
+    t_max = trans.max()
+    step = np.exp(trans - t_max)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+        alpha = np.empty_like(e)
+        a = np.exp(start - start.max()) * emit[:, 0]
+        scale = a.sum(axis=1)
+        log_z = np.log(scale) + start.max() + shift[:, 0]
+        alpha[:, 0] = a = a / scale[:, None]
+        for t in range(1, time):
+            nxt = (a @ step) * emit[:, t]
+            scale = nxt.sum(axis=1)
+            on = mask[:, t]
+            a = np.where(on[:, None], nxt / scale[:, None], a)
+            log_z = log_z + np.where(on, np.log(scale) + t_max + shift[:, t], 0.0)
+            alpha[:, t] = a
+        final = np.exp(end - end.max())
+        log_z = log_z + np.log((a * final).sum(axis=1)) + end.max()
+        beta = np.empty_like(e)
+        beta[:, time - 1] = b = np.broadcast_to(final, (batch, n_tags))
+        for t in range(time - 2, -1, -1):
+            nxt = (emit[:, t + 1] * b) @ step.T
+            b = np.where(mask[:, t + 1, None], nxt / nxt.sum(axis=1, keepdims=True), final)
+            beta[:, t] = b
+        joint = alpha * beta
+        marginals = joint / joint.sum(axis=2, keepdims=True) * mask[:, :, None]
+    if not (np.isfinite(log_z).all() and np.isfinite(marginals).all()):
+        return _forward_backward_log(e, mask, start, end, trans)
+    return marginals, log_z
+
+
+def _logsumexp(x: np.ndarray, axis: int) -> np.ndarray:
+    top = x.max(axis=axis, keepdims=True)
+    top = np.where(np.isfinite(top), top, 0.0)
+    return np.squeeze(top, axis=axis) + np.log(np.exp(x - top).sum(axis=axis))
+
+
+def _forward_backward_log(e, mask, start, end, trans) -> tuple[np.ndarray, np.ndarray]:
+    """The same in log space: slower, for scores too extreme for the scaled recursion."""
     batch, time, _ = e.shape
-    lengths = mask.sum(dim=1)
-    alpha = [start + e[:, 0]]
+    alpha = np.empty_like(e)
+    alpha[:, 0] = start + e[:, 0]
     for t in range(1, time):
-        step = torch.logsumexp(alpha[-1][:, :, None] + trans[None] + e[:, t, None, :], dim=1)
-        alpha.append(torch.where(mask[:, t, None], step, alpha[-1]))
-    beta = [end.expand(batch, -1)]
+        step = _logsumexp(alpha[:, t - 1, :, None] + trans[None] + e[:, t, None, :], axis=1)
+        alpha[:, t] = np.where(mask[:, t, None], step, alpha[:, t - 1])
+    beta = np.empty_like(e)
+    beta[:, time - 1] = end
     for t in range(time - 2, -1, -1):
-        step = torch.logsumexp(trans[None] + (e[:, t + 1] + beta[0])[:, None, :], dim=2)
-        beta.insert(0, torch.where(mask[:, t + 1, None], step, end.expand(batch, -1)))
-    alpha_t, beta_t = torch.stack(alpha, dim=1), torch.stack(beta, dim=1)
-    last = alpha_t[torch.arange(batch), lengths - 1]
-    return alpha_t, beta_t, torch.logsumexp(last + end, dim=1)
+        step = _logsumexp(trans[None] + (e[:, t + 1] + beta[:, t + 1])[:, None, :], axis=2)
+        beta[:, t] = np.where(mask[:, t + 1, None], step, end)
+    lengths = mask.sum(axis=1)
+    log_z = _logsumexp(alpha[np.arange(batch), lengths - 1] + end, axis=1)
+    return np.exp(alpha + beta - log_z[:, None, None]) * mask[:, :, None], log_z
 
 
 def crf_log_partition(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
     """log Z for each sequence (batch-first emissions), float64: the log-sum-exp of all tag sequences' scores."""
-    return _forward_backward(crf, emissions, mask)[2]
+    return torch.from_numpy(_forward_backward(*_numpy_parts(crf, emissions, mask))[1])
 
 
 def crf_marginals(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
-    """P(tag of word t = j | words), float64 (batch, time, tags), by forward-backward in log space.
+    """P(tag of word t = j | words), float64 (batch, time, tags), by forward-backward.
 
-    ``exp(alpha_t(j) + beta_t(j) - log Z)``, where alpha sums the scores of all prefixes
-    ending in j at t (start, emissions, transitions) and beta those of all suffixes after
-    it (transitions, emissions, end). Padding positions (mask false) are zeros.
+    ``alpha_t(j) * beta_t(j) / Z``, where alpha sums the scores of all prefixes ending in j
+    at t (start, emissions, transitions) and beta those of all suffixes after it
+    (transitions, emissions, end), computed with scaling (``_forward_backward``). Padding
+    positions (mask false) are zeros.
     """
-    alpha, beta, log_z = _forward_backward(crf, emissions, mask)
-    marginals = torch.exp(alpha + beta - log_z[:, None, None])
-    return marginals * mask.bool()[:, :, None]
+    return torch.from_numpy(_forward_backward(*_numpy_parts(crf, emissions, mask))[0])
 
 
 def crf_sequence_scores(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, tags: torch.Tensor) -> torch.Tensor:
@@ -262,35 +317,25 @@ def crf_sequence_scores(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, t
     return score + end[last]
 
 
-@torch.no_grad()
-def crf_kbest(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, k: int) -> list[list[tuple[list[int], float]]]:
-    """The k highest-scoring tag sequences of each sequence with their log-probabilities (score - log Z).
-
-    List Viterbi: at each word, for each tag, the k best prefixes ending in that tag are
-    kept (a prefix outside them cannot start one of the k best paths, so this is exact).
-    Per sequence: at most k (fewer when fewer tag sequences exist), best first; ties keep
-    torch's ``topk`` order. The first is the Viterbi path that ``crf.decode`` gives.
-    """
-    k = check_k(k)
-    e, mask, start, end, trans = _crf_parts(crf, emissions, mask)
+def _kbest(e: np.ndarray, mask: np.ndarray, start: np.ndarray, end: np.ndarray, trans: np.ndarray, k: int,
+           log_z: np.ndarray) -> list[list[tuple[list[int], float]]]:
+    """``crf_kbest`` on NumPy parts, with log Z already known."""
     batch, time, n_tags = e.shape
     # scores[b, j, r]: the r-th best prefix score ending in tag j (-inf where fewer prefixes exist)
-    scores = torch.full((batch, n_tags, k), float("-inf"), dtype=e.dtype, device=e.device)
+    scores = np.full((batch, n_tags, k), -np.inf)
     scores[:, :, 0] = start + e[:, 0]
     pointers = []  # per step t >= 1: (batch, tags, k) index into the previous step's tags * k + rank
-    keep = torch.arange(n_tags * k, device=e.device).reshape(1, n_tags, k).expand(batch, -1, -1)
+    keep = np.broadcast_to(np.arange(n_tags * k).reshape(1, n_tags, k), (batch, n_tags, k))
+    into = np.repeat(trans, k, axis=0)[None]  # row j * k + r: from tag j
     for t in range(1, time):
-        candidates = scores.reshape(batch, n_tags * k, 1) + trans.repeat_interleave(k, dim=0)[None] + e[:, t, None, :]
-        best, index = candidates.topk(k, dim=1)  # (batch, k, tags): the k best ways into each tag
+        candidates = scores.reshape(batch, n_tags * k, 1) + into + e[:, t, None, :]
+        best, index = (x.numpy() for x in torch.from_numpy(candidates).topk(k, dim=1))  # (batch, k, tags)
         on = mask[:, t, None, None]
-        scores = torch.where(on, best.transpose(1, 2), scores)
-        pointers.append(torch.where(on, index.transpose(1, 2), keep))
+        scores = np.where(on, best.transpose(0, 2, 1), scores)
+        pointers.append(np.where(on, index.transpose(0, 2, 1), keep))
     final = (scores + end[None, :, None]).reshape(batch, n_tags * k)
-    top, where = final.topk(k, dim=1)
-    log_z = crf_log_partition(crf, emissions, mask)
-    top, where, log_z = top.cpu(), where.cpu(), log_z.cpu()
-    pointers = [p.cpu() for p in pointers]
-    lengths = mask.sum(dim=1).tolist()
+    top, where = (x.numpy() for x in torch.from_numpy(final).topk(k, dim=1))
+    lengths = mask.sum(axis=1)
     out = []
     for b in range(batch):
         found = []
@@ -298,12 +343,34 @@ def crf_kbest(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, k: int) -> 
             if score == float("-inf"):
                 break
             path = [flat // k]
-            for t in range(lengths[b] - 1, 0, -1):
+            for t in range(int(lengths[b]) - 1, 0, -1):
                 flat = int(pointers[t - 1][b, flat // k, flat % k])
                 path.append(flat // k)
             found.append((path[::-1], score - float(log_z[b])))
         out.append(found)
     return out
+
+
+def crf_kbest(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, k: int) -> list[list[tuple[list[int], float]]]:
+    """The k highest-scoring tag sequences of each sequence with their log-probabilities (score - log Z).
+
+    List Viterbi: at each word, for each tag, the k best prefixes ending in that tag are
+    kept (a prefix outside them cannot start one of the k best paths, so this is exact).
+    Per sequence: at most k (fewer when fewer tag sequences exist), best first; ties keep
+    ``torch.topk``'s order. The first is the Viterbi path that ``crf.decode`` gives.
+    """
+    k = check_k(k)
+    parts = _numpy_parts(crf, emissions, mask)
+    return _kbest(*parts, k, _forward_backward(*parts)[1])
+
+
+def crf_confidence(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor,
+                   k: int) -> tuple[np.ndarray, list[list[tuple[list[int], float]]]]:
+    """(marginals, k best) from one forward-backward: what ``predict_confidence`` needs."""
+    k = check_k(k)
+    parts = _numpy_parts(crf, emissions, mask)
+    marginals, log_z = _forward_backward(*parts)
+    return marginals, _kbest(*parts, k, log_z)
 
 
 class BiLstmCrfTagger(Tagger):
@@ -612,19 +679,18 @@ class BiLstmCrfTagger(Tagger):
         return out
 
     def predict_confidence(self, sentences: Sentences, k: int = 5, batch_size: int = 64) -> list[TagConfidence]:
-        """Viterbi tags, forward-backward marginals and the k best sequences, from one pass of the network."""
+        """Viterbi tags (the first of the k best), forward-backward marginals and the k best sequences,
+        from one pass of the network and one forward-backward (``crf_confidence``)."""
         k = check_k(k)
         sentences = check_sentences(sentences)
         self._check_trained("predict_confidence")
         out = [TagConfidence([], np.zeros((0, len(self.labels))), [([], 0.0)]) for _ in sentences]
         with torch.inference_mode():
             for index, emissions, mask in self._batches(sentences, batch_size):
-                paths = self.network.crf.decode(emissions, mask=mask)
-                marginals = crf_marginals(self.network.crf, emissions, mask).cpu().numpy()
-                kbest = crf_kbest(self.network.crf, emissions, mask, k)
+                marginals, kbest = crf_confidence(self.network.crf, emissions, mask, k)
                 for row, i in enumerate(index):
                     out[i] = TagConfidence(
-                        [self.labels[t] for t in paths[row]],
+                        [self.labels[t] for t in kbest[row][0][0]],
                         marginals[row, : len(sentences[i])],
                         [([self.labels[t] for t in path], log_p) for path, log_p in kbest[row]],
                     )

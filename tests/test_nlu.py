@@ -340,6 +340,27 @@ def test_crf_marginals_and_kbest_match_brute_force(seed, n_tags, lengths) -> Non
         )
 
 
+@pytest.mark.parametrize("scale", [1.0, 1000.0])
+def test_crf_marginals_survive_extreme_scores(scale) -> None:
+    """Scores thousands of nats apart (the scaled recursion underflows, the log-space one takes over): still exact."""
+    crf, emissions, mask = _random_crf(7, 3, [3, 2])
+    with torch.no_grad():
+        crf.transitions.mul_(scale)
+    emissions = emissions * scale
+    log_z = crf_log_partition(crf, emissions, mask).numpy()
+    marginals = crf_marginals(crf, emissions, mask).numpy()
+    assert np.isfinite(log_z).all() and np.isfinite(marginals).all()
+    for b, length in enumerate([3, 2]):
+        paths = _all_paths(crf, emissions[b], length)
+        scores = np.array([score for _, score in paths])
+        brute_log_z = np.logaddexp.reduce(scores)
+        assert log_z[b] == pytest.approx(brute_log_z, rel=1e-12, abs=1e-9)
+        expected = np.zeros((length, 3))
+        for (path, _), p in zip(paths, np.exp(scores - brute_log_z)):
+            expected[np.arange(length), list(path)] += p
+        np.testing.assert_allclose(marginals[b, :length], expected, atol=1e-9)
+
+
 def test_crf_functions_refuse_an_empty_first_word() -> None:
     crf, emissions, mask = _random_crf(0, 3, [2, 2])
     mask[1, 0] = False

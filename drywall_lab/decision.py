@@ -19,6 +19,10 @@ information-mapping rules against the site and the action history, and then:
 4. A reading that the site refuses (overlap, buried panel, ...) is refused with the IM's own message
    unless a feasible reading within the margin is likely enough to be worth a question.
 
+5. Optionally, **a second opinion** (``second_opinion``; ``decide_episode(..., check=...)``): a second,
+   differently built tagger whose best reading gives another command turns an action into a question.
+   Off by default (``benchmarks/second_opinion.py`` measures it).
+
 ``DecisionSettings`` holds the thresholds; ``benchmarks/decision.py`` chooses them on the generated
 field-corpus validation and novel splits (never on the hand-written field sets) and records the
 risk-coverage curve. The rule trace (``Interpretation.trace``) ends with a ``decision`` stage naming the
@@ -282,6 +286,26 @@ def decide_tags(words: Sequence[str], tags: Sequence[str], labels: Sequence[str]
     return decide(words, [(list(tags), 0.0)], marginals, labels, history)
 
 
+def second_opinion(decision: Decision, check: Interpretation, any_difference: bool = False) -> Decision:
+    """A check on confident mistakes: ``decision`` stands unless the robot would act and a second, differently
+    built tagger's best reading (``check``: its tags through the IM rules against the same history) gives
+    another command (with ``any_difference``, any other outcome, a refusal included). Then the robot asks,
+    naming both readings, and the trace says why. ``benchmarks/second_opinion.py`` measures the rule."""
+    own, other = outcome_of(decision.interpretation), outcome_of(check)
+    if not decision.acted or other == own or (other[0] != "command" and not any_difference):
+        return decision
+    if other[0] == "command":
+        question, options, seen = question_between(own, other), [own, other], f"command {_describe(other)}"
+    else:
+        question, options, seen = _confirm(own, decision.words, []), [own], f"refused ({other[1]})"
+    chosen = decision.interpretation
+    result = Interpretation(list(chosen.words), list(chosen.tags), Trace(list(chosen.trace.steps)), None,
+                            Refusal("unclear", question))
+    result.trace.add("decision", "D second opinion", True,
+                     conclusion=f"a second tagger's reading gives {seen} (tags: {' '.join(check.tags)}): ask")
+    return Decision(decision.words, decision.tags, result, decision.confidence, "ask", decision.readings, options)
+
+
 # --- one instruction, whole episodes ----------------------------------------------------------------------
 def decide_instruction(words: Sequence[str], tagger, history: ActionHistory,
                        settings: DecisionSettings = DEFAULT_SETTINGS) -> Decision:
@@ -302,13 +326,19 @@ def interpret_instruction(words: Sequence[str], tagger, history: ActionHistory,
 
 # --- whole episodes --------------------------------------------------------------------------------------
 def decide_episode(instructions: Sequence[Sequence[str]], tagger, settings: DecisionSettings = DEFAULT_SETTINGS,
-                   history: ActionHistory | None = None) -> list[Decision]:
-    """Decide each instruction of an episode in order, recording the commands acted on in ``history``."""
+                   history: ActionHistory | None = None, check=None, any_difference: bool = False) -> list[Decision]:
+    """Decide each instruction of an episode in order, recording the commands acted on in ``history``.
+
+    ``check``: a second tagger whose best tags give each decision a ``second_opinion`` (off by default)."""
     history = history if history is not None else ActionHistory()
-    confidences = tagger.predict_confidence([list(w) for w in instructions], k=settings.k) if instructions else []
+    instructions = [list(w) for w in instructions]
+    confidences = tagger.predict_confidence(instructions, k=settings.k) if instructions else []
+    checks = check.predict(instructions) if check is not None and instructions else [None] * len(instructions)
     decisions = []
-    for words, conf in zip(instructions, confidences):
+    for words, conf, check_tags in zip(instructions, confidences, checks):
         decision = decide(words, conf.kbest, conf.marginals, tagger.labels, history, settings)
+        if check_tags is not None:
+            decision = second_opinion(decision, im_interpret(words, check_tags, history), any_difference)
         if decision.acted:
             history.record(decision.command)
         decisions.append(decision)

@@ -244,3 +244,34 @@ def test_readme_quotes_the_placement_results() -> None:
     assert "Written by `python benchmarks/placement.py" in text and "--quick" not in text.split("\n", 3)[2]
     line = last_summary(text, r"success_rate=\S+ max_pos_err_mm=\S+ max_ang_err_deg=\S+ realtime_factor=\S+")
     assert f"`{line}`" in README.read_text(encoding="utf-8")
+
+
+def test_second_opinion_quick_writes_its_results(tmp_path, capsys) -> None:
+    """benchmarks/second_opinion.py chooses on the generated splits and measures every rule on the field sets;
+    its rule ``none`` is exactly what ``run`` does (benchmarks/results/field.md's figures)."""
+    from drywall_lab.nlu import DEFAULT_TAGGER_DIR
+
+    out = tmp_path / "second_opinion.md"
+    assert load_script("second_opinion").main(["--check", str(DEFAULT_TAGGER_DIR), "--quick", "--out", str(out)]) == 0
+    text = out.read_text(encoding="utf-8")
+    assert f"**Command:** `python benchmarks/second_opinion.py --check {DEFAULT_TAGGER_DIR} --quick --out {out}`" in text
+    assert f"- cpu: {describe_machine().cpu}" in text
+    chosen = re.search(r"chosen=(\w+)", text).group(1)
+    assert chosen in ("none", "command", "any")
+    costs = {rule: float(c) for rule, c in re.findall(r"mean cost (\w+): (\S+)", text)}
+    assert set(costs) == {"none", "command", "any"} and costs[chosen] == min(costs.values())
+    field = (REPO / "benchmarks" / "results" / "field.md").read_text(encoding="utf-8")
+    for figure in ("accuracy", "wrong_action_rate"):
+        recorded = re.search(rf"data_field_{figure}=(\S+)", field).group(1)
+        assert f"data_field_none_{figure}={recorded}" in text
+    assert f"chosen={chosen}" in capsys.readouterr().out
+
+
+def test_readme_quotes_the_second_opinion_results() -> None:
+    text = (REPO / "benchmarks" / "results" / "second_opinion.md").read_text(encoding="utf-8")
+    assert "**Command:** `python benchmarks/second_opinion.py --check" in text and "--quick" not in text
+    summary = text.split("## Summary")[1].split("```")[1].split()
+    readme = " ".join(README.read_text(encoding="utf-8").split())
+    assert f"it chose `{summary[0].split('=')[1]}`" in readme
+    for line in summary[1:]:
+        assert f"`{line}" in readme or f" {line}`" in readme, line

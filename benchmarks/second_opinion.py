@@ -1,0 +1,139 @@
+"""A second opinion on confident mistakes: does a differently built tagger catch the shipped tagger's wrong actions?
+
+On hand-written language the shipped BiLSTM-CRF is sometimes confidently wrong, and its own probabilities do
+not catch it (issue 12). ``drywall_lab.decision.second_opinion`` lets a second tagger veto an action: when the
+decision layer would act and the second tagger's best reading, through the same IM rules and history, gives
+another command (rule ``command``) or any other outcome (rule ``any``), the robot asks instead. This script
+measures the rule with a given second tagger (``--check DIR``, a saved tagger), in two parts:
+
+1. **the choice**, on the generated field corpus's validation and novel splits only (each instruction in its
+   own episode context), with ``benchmarks/decision.py``'s cost: ``WRONG_ACTION_COST`` x wrong-action rate +
+   over-refusal rate, averaged over the two splits; ``none`` (no check) wins ties;
+2. **the measurement** of every rule on the hand-written field sets (``data/field`` and, where it exists,
+   ``../shared/field`` with its own ``score.py``), played episode by episode as ``run`` plays them.
+
+It writes its results file (default ``benchmarks/results/second_opinion.md``) with the machine, the date, the
+command and both taggers. The check tagger used for the recorded results is MiniLM fine-tuned on the field
+corpus as the ablation trains it (17 min on the 2-core CPU; its 91 MB of weights are not in the repository):
+
+    python -m drywall_lab train bert --corpus field --epochs 2 --learning-rate 3e-4 --warmup-ratio 0.1 \\
+        --device cpu --seed 0 --out models/minilm_field
+    python benchmarks/second_opinion.py --check models/minilm_field [--tagger DIR] [--out FILE] [--quick]
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import pandas as pd
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from decision import SPLITS, WRONG_ACTION_COST, cost  # noqa: E402 (benchmarks/decision.py: the same rule)
+from field import describe_tagger, field_sets, shared_score  # noqa: E402 (benchmarks/field.py)
+
+from drywall_lab.corpus.io import tokenize  # noqa: E402
+from drywall_lab.decision import decide, decide_episode, decision_scores, second_opinion  # noqa: E402
+from drywall_lab.field import FIELD_DIR, read_field_set, score_run  # noqa: E402
+from drywall_lab.im import ActionHistory, interpret  # noqa: E402
+from drywall_lab.machine import describe_machine  # noqa: E402
+from drywall_lab.nlu import load_tagger  # noqa: E402
+from drywall_lab.pipeline import contract_record, load_tagger_option  # noqa: E402
+from drywall_lab.splits import split_rows  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+RESULTS = Path(__file__).resolve().parent / "results" / "second_opinion.md"
+#: rule name -> second_opinion's any_difference (None: no check)
+RULES = {"none": None, "command": False, "any": True}
+
+
+def split_decisions(rows: list[dict], tagger, check) -> dict[str, list]:
+    """Each rule's decisions on corpus rows, each row against its own episode context."""
+    words = [list(r["words"]) for r in rows]
+    confidences = tagger.predict_confidence(words, k=8)
+    check_tags = check.predict(words)
+    out = {rule: [] for rule in RULES}
+    for row, conf, tags in zip(rows, confidences, check_tags):
+        history = ActionHistory.from_commands(row["context"]["history"])
+        decision = decide(row["words"], conf.kbest, conf.marginals, tagger.labels, history)
+        check_reading = interpret(list(row["words"]), tags, history)
+        for rule, any_difference in RULES.items():
+            out[rule].append(decision if any_difference is None else second_opinion(decision, check_reading,
+                                                                                     any_difference))
+    return out
+
+
+def play(directory: Path, tagger, check, any_difference: bool | None) -> tuple[list[dict], pd.DataFrame]:
+    """A field set played as ``run`` plays it, with the rule; its records and scores by voice."""
+    field_set = read_field_set(directory, tagged=directory == FIELD_DIR)
+    records = []
+    for episode in field_set.episodes:
+        words = [tokenize(text) for text in episode["instructions"]]
+        decisions = decide_episode(words, tagger, check=None if any_difference is None else check,
+                                   any_difference=bool(any_difference))
+        records += [contract_record(episode["id"], step, d.interpretation) for step, d in enumerate(decisions)]
+    return records, score_run(records, field_set)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--check", required=True, help="the second tagger's saved directory")
+    parser.add_argument("--tagger", default=None, help="the first tagger (default: the shipped one)")
+    parser.add_argument("--out", type=Path, default=None, help=f"results file (default {RESULTS.relative_to(ROOT)})")
+    parser.add_argument("--quick", action="store_true", help="100 instructions a split (needs --out)")
+    args = parser.parse_args(argv)
+    if args.quick and args.out is None:
+        parser.error("--quick writes a check of the script, not the recorded results: give --out")
+    out = args.out or RESULTS
+    machine = describe_machine()
+    started = time.perf_counter()
+    tagger, check = load_tagger_option(args.tagger), load_tagger(args.check)
+    command = f"python benchmarks/second_opinion.py{''.join(' ' + a for a in (argv if argv is not None else sys.argv[1:]))}"
+    lines = ["# A second opinion on confident mistakes (`benchmarks/second_opinion.py`)", "",
+             f"**Command:** `{command}`", "", f"**Tagger:** {describe_tagger(args.tagger, tagger)}", "",
+             f"**Check:** {describe_tagger(args.check, check)}", "", *machine.markdown_lines(), ""]
+
+    choice = []
+    for split in SPLITS:
+        rows = split_rows(split)[:100] if args.quick else split_rows(split)
+        for rule, decisions in split_decisions(rows, tagger, check).items():
+            scores = decision_scores(rows, decisions)
+            choice.append({"rule": rule, "split": split, "n": len(rows), **scores, "cost": cost(scores)})
+    choice_table = pd.DataFrame(choice)
+    mean_cost = choice_table.groupby("rule", sort=False)["cost"].mean()
+    chosen = mean_cost.idxmin()  # the first of equal costs: "none" comes first
+    lines += [f"## The choice, on the generated splits ({', '.join(SPLITS)})", "",
+              f"Cost: {WRONG_ACTION_COST} x wrong-action rate + over-refusal rate, mean over the splits.", "", "```",
+              choice_table.to_string(index=False, float_format=lambda x: f"{x:.4f}"), "```", "",
+              "```", *(f"mean cost {rule}: {c:.4f}" for rule, c in mean_cost.items()), f"chosen={chosen}", "```", ""]
+    print(choice_table.to_string(index=False, float_format=lambda x: f"{x:.4f}"))
+    print(f"chosen={chosen}")
+
+    measured, summary = [], []
+    for name, directory in field_sets().items():
+        for rule, any_difference in RULES.items():
+            records, scores = play(directory, tagger, check, any_difference)
+            row = scores.loc["ALL"]
+            measured.append({"set": name, "rule": rule, "steps": int(row["n"]), "accuracy": row["accuracy"],
+                             "wrong_action_rate": row["wrong_action_rate"], "over_refusal_rate": row["over_refusal_rate"]})
+            if name == "shared_field":
+                report = shared_score(records).rstrip().splitlines()
+                lines += [f"`score.py` on shared_field, rule {rule}: " + " ".join(report[-2:]), ""]
+            if rule == chosen or rule == "none":
+                summary.append(f"{name}_{rule}_accuracy={row['accuracy']:.4f} "
+                               f"{name}_{rule}_wrong_action_rate={row['wrong_action_rate']:.4f}")
+    measured_table = pd.DataFrame(measured)
+    lines += ["## Measured on the hand-written field sets (never used for the choice)", "", "```",
+              measured_table.to_string(index=False, float_format=lambda x: f"{x:.4f}"), "```", "",
+              "## Summary", "", "```", f"chosen={chosen}", *summary, "```", "",
+              f"{time.perf_counter() - started:.0f} s in all.", ""]
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text("\n".join(lines), encoding="utf-8")
+    print(measured_table.to_string(index=False, float_format=lambda x: f"{x:.4f}"))
+    print("\n".join(summary))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

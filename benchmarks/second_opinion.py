@@ -31,15 +31,13 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from decision import SPLITS, WRONG_ACTION_COST, cost  # noqa: E402 (benchmarks/decision.py: the same rule)
-from field import describe_tagger, field_sets, shared_score  # noqa: E402 (benchmarks/field.py)
+from field import describe_tagger, field_sets, run_set, shared_score  # noqa: E402 (benchmarks/field.py)
 
-from drywall_lab.corpus.io import tokenize  # noqa: E402
-from drywall_lab.decision import decide, decide_episode, decision_scores, second_opinion  # noqa: E402
-from drywall_lab.field import FIELD_DIR, read_field_set, score_run  # noqa: E402
+from drywall_lab.decision import decide_rows, decision_scores, second_opinion  # noqa: E402
 from drywall_lab.im import ActionHistory, interpret  # noqa: E402
 from drywall_lab.machine import describe_machine  # noqa: E402
 from drywall_lab.nlu import load_tagger  # noqa: E402
-from drywall_lab.pipeline import contract_record, load_tagger_option  # noqa: E402
+from drywall_lab.pipeline import load_tagger_option  # noqa: E402
 from drywall_lab.splits import split_rows  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -50,30 +48,15 @@ RULES = {"none": None, "command": False, "any": True}
 
 def split_decisions(rows: list[dict], tagger, check) -> dict[str, list]:
     """Each rule's decisions on corpus rows, each row against its own episode context."""
-    words = [list(r["words"]) for r in rows]
-    confidences = tagger.predict_confidence(words, k=8)
-    check_tags = check.predict(words)
+    decisions = decide_rows(rows, tagger)
+    check_tags = check.predict([list(r["words"]) for r in rows])
     out = {rule: [] for rule in RULES}
-    for row, conf, tags in zip(rows, confidences, check_tags):
-        history = ActionHistory.from_commands(row["context"]["history"])
-        decision = decide(row["words"], conf.kbest, conf.marginals, tagger.labels, history)
-        check_reading = interpret(list(row["words"]), tags, history)
+    for row, decision, tags in zip(rows, decisions, check_tags):
+        check_reading = interpret(list(row["words"]), tags, ActionHistory.from_commands(row["context"]["history"]))
         for rule, any_difference in RULES.items():
             out[rule].append(decision if any_difference is None else second_opinion(decision, check_reading,
                                                                                      any_difference))
     return out
-
-
-def play(directory: Path, tagger, check, any_difference: bool | None) -> tuple[list[dict], pd.DataFrame]:
-    """A field set played as ``run`` plays it, with the rule; its records and scores by voice."""
-    field_set = read_field_set(directory, tagged=directory == FIELD_DIR)
-    records = []
-    for episode in field_set.episodes:
-        words = [tokenize(text) for text in episode["instructions"]]
-        decisions = decide_episode(words, tagger, check=None if any_difference is None else check,
-                                   any_difference=bool(any_difference))
-        records += [contract_record(episode["id"], step, d.interpretation) for step, d in enumerate(decisions)]
-    return records, score_run(records, field_set)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -113,7 +96,8 @@ def main(argv: list[str] | None = None) -> int:
     measured, summary = [], []
     for name, directory in field_sets().items():
         for rule, any_difference in RULES.items():
-            records, scores = play(directory, tagger, check, any_difference)
+            records, scores, _ = run_set(directory, tagger, None if any_difference is None else check,
+                                         bool(any_difference))
             row = scores.loc["ALL"]
             measured.append({"set": name, "rule": rule, "steps": int(row["n"]), "accuracy": row["accuracy"],
                              "wrong_action_rate": row["wrong_action_rate"], "over_refusal_rate": row["over_refusal_rate"]})

@@ -98,30 +98,34 @@ def contract_record(episode_id: str | int, step: int, result: Interpretation) ->
 
 
 def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None,
-                settings: "DecisionSettings | None" = None) -> list[Interpretation]:
+                settings: "DecisionSettings | None" = None, check: WordTagger | None = None,
+                any_difference: bool = False) -> list[Interpretation]:
     """Tag every instruction of the episode (one batch), then decide them in order on a fresh site.
 
     A tagger with confidence (``predict_confidence``, both of the project's taggers) goes through the
     decision layer (``drywall_lab.decision``: IM-aware decoding; a question, refusal reason ``unclear``,
     instead of a guess) with ``settings`` (default ``DEFAULT_SETTINGS``; ``BEST_PATH`` acts on the single
-    best tag sequence, as the paper does). Any other tagger's tags are mapped as they are.
+    best tag sequence, as the paper does). Any other tagger's tags are mapped as they are. ``check``: a second
+    tagger giving each decision a ``second_opinion`` (``any_difference``: on any other outcome), off by default.
     """
     from drywall_lab.decision import DEFAULT_SETTINGS, decide_episode
 
     words = [tokenize(text) for text in episode["instructions"]]
     if hasattr(tagger, "predict_confidence"):
         history = ActionHistory(site)
-        return [d.interpretation for d in decide_episode(words, tagger, settings or DEFAULT_SETTINGS, history)]
+        return [d.interpretation for d in decide_episode(words, tagger, settings or DEFAULT_SETTINGS, history,
+                                                         check, any_difference)]
     tags = tagger.predict(words) if words else []
     mapper = InformationMapper(site)
     return [mapper.apply(w, t) for w, t in zip(words, tags)]
 
 
 def run_episodes(episodes: Iterable[Mapping], tagger: WordTagger, site: Site | None = None,
-                 settings: "DecisionSettings | None" = None) -> Iterator[dict]:
-    """The ``run`` output records, episode after episode (spec section 6)."""
+                 settings: "DecisionSettings | None" = None, check: WordTagger | None = None,
+                 any_difference: bool = False) -> Iterator[dict]:
+    """The ``run`` output records, episode after episode (spec section 6); ``check`` as in ``run_episode``."""
     for episode in episodes:
-        for step, result in enumerate(run_episode(episode, tagger, site, settings)):
+        for step, result in enumerate(run_episode(episode, tagger, site, settings, check, any_difference)):
             yield contract_record(episode["id"], step, result)
 
 

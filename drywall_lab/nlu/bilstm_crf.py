@@ -359,9 +359,7 @@ def crf_kbest(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, k: int) -> 
     Per sequence: at most k (fewer when fewer tag sequences exist), best first; ties keep
     ``torch.topk``'s order. The first is the Viterbi path that ``crf.decode`` gives.
     """
-    k = check_k(k)
-    parts = _numpy_parts(crf, emissions, mask)
-    return _kbest(*parts, k, _forward_backward(*parts)[1])
+    return crf_confidence(crf, emissions, mask, k)[1]
 
 
 def crf_confidence(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor,

@@ -693,25 +693,9 @@ def token_predictions(tagger: "Tagger", words: Sequence[str]) -> pd.DataFrame:
 
 
 def _token_tables(tagger: "Tagger", sentences: Sequence[Sequence[str]]) -> list[pd.DataFrame]:
-    """``token_predictions`` for many instructions, in batches (``BertTagger._token_logits``, as ``predict`` does):
-    a long instruction cut into pieces comes back as one table, its word ids counted from its first word."""
-    import torch
-
-    from drywall_lab.nlu.base import check_sentences
-
-    sentences = check_sentences(sentences)
-    tagger._check_trained("token_predictions")
-    records: list[list[dict]] = [[] for _ in sentences]
-    offsets = [0] * len(sentences)
-    with torch.inference_mode():
-        for owners, items, logits in tagger._token_logits(sentences, batch_size=64):
-            for owner, item, row in zip(owners, items, logits.argmax(-1).tolist()):
-                tokens = tagger.tokenizer.convert_ids_to_tokens(item["features"]["input_ids"])
-                for token, word, label in zip(tokens, item["word_ids"], row):
-                    records[owner].append({"token": token, "word id": None if word is None else word + offsets[owner],
-                                           "token tag": tagger.labels[label]})
-                offsets[owner] += item["n_words"]
-    return [pd.DataFrame(r, columns=["token", "word id", "token tag"], dtype=object) for r in records]
+    """``token_predictions`` for many instructions, in batches (``BertTagger.predict_tokens``)."""
+    return [pd.DataFrame(rows, columns=["token", "word id", "token tag"], dtype=object)
+            for rows in tagger.predict_tokens(sentences)]
 
 
 def vote_statistics(tagger: "Tagger", rows: Sequence[Mapping]) -> dict[str, int]:

@@ -603,6 +603,34 @@ def test_bert_cuts_long_input_into_pieces(small_bert) -> None:
     assert set(cut) <= set(TAGS)
 
 
+def test_bert_token_tags_vote_to_the_word_tags_even_when_cut(small_bert) -> None:
+    from drywall_lab.nlu.bert import vote_word_tags
+
+    words = ("put the full-size panel 500310 on stud 500107 " * 12).split()
+    sentences = [words, ["grab", "sheetrock"], []]
+    small_bert.max_length = 16  # the long instruction is cut into pieces
+    try:
+        tokens = small_bert.predict_tokens(sentences)
+        predicted = small_bert.predict(sentences)
+    finally:
+        small_bert.max_length = 128
+    assert tokens[2] == []
+    for words_, table, tags in zip(sentences, tokens, predicted):
+        if not words_:
+            continue
+        ids = [w for _, w, _ in table]
+        assert max(w for w in ids if w is not None) == len(words_) - 1
+        assert sum(1 for w in ids if w is None) >= 2  # [CLS] and [SEP] of each piece
+        assert vote_word_tags([t for _, _, t in table], ids, len(words_)) == tags
+
+
+def test_an_untrained_bert_has_no_token_tags() -> None:
+    from drywall_lab.nlu.bert import BertTagger
+
+    with pytest.raises(RuntimeError, match="predict_tokens"):
+        BertTagger().predict_tokens([["stud"]])
+
+
 # --- both taggers: interface, saving and loading ----------------------------------------------------
 @pytest.fixture(params=["bilstm-crf", "bert"])
 def tagger(request, small_lstm, small_bert):

@@ -495,6 +495,24 @@ class BertTagger(Tagger):
                     out[owner].extend(tags)
         return out
 
+    def predict_tokens(self, sentences: Sentences, batch_size: int = 64) -> list[list[tuple[str, int | None, str]]]:
+        """Each instruction's sub-word tokens as ``(token, word index, token tag)``, the model's own classes
+        before ``predict`` votes them into word tags (section 3.2's sub-word labelling). Special tokens have
+        word index ``None``; a long instruction cut into pieces comes back whole, its word indices counted
+        from its first word."""
+        sentences = check_sentences(sentences)
+        self._check_trained("predict_tokens")
+        out: list[list[tuple[str, int | None, str]]] = [[] for _ in sentences]
+        offsets = [0] * len(sentences)
+        with torch.inference_mode():
+            for owners, items, logits in self._token_logits(sentences, batch_size):
+                for owner, item, row in zip(owners, items, logits.argmax(-1).tolist()):
+                    tokens = self.tokenizer.convert_ids_to_tokens(item["features"]["input_ids"])
+                    for token, word, label in zip(tokens, item["word_ids"], row):
+                        out[owner].append((token, None if word is None else word + offsets[owner], self.labels[label]))
+                    offsets[owner] += item["n_words"]
+        return out
+
     def _tags_and_marginals(
         self, sentences: Sentences, batch_size: int, *, with_tags: bool
     ) -> tuple[list[list[str]], list[np.ndarray]]:

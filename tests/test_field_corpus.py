@@ -34,6 +34,25 @@ def test_committed_splits_regenerate_byte_for_byte(tmp_path):
         assert path.read_bytes() == (FG.FIELD_DIR / f"{split}.jsonl").read_bytes(), split
 
 
+def test_a_cached_train_split_from_another_generator_is_generated_again(tmp_path, monkeypatch):
+    """The cached train split is only read back while the generator that wrote it is unchanged."""
+    monkeypatch.setitem(FG.FIELD_SPLIT_SIZES, "train", 40)
+    fresh = FG.field_split("train", tmp_path)
+    stamp = tmp_path / "train.fingerprint"
+    assert stamp.read_text().strip() == FG.generator_fingerprint() and len(fresh) == 40
+    stale = [dict(row, words=["stale"] * len(row["words"])) for row in fresh]
+    write_jsonl(stale, tmp_path / "train.jsonl")
+    assert FG.field_split("train", tmp_path) == stale  # same generator: the cache is read as it is
+    stamp.write_text("a fingerprint of another generator\n")
+    assert FG.field_split("train", tmp_path) == fresh  # changed generator: generated again, stamp renewed
+    assert stamp.read_text().strip() == FG.generator_fingerprint()
+    stamp.unlink()
+    write_jsonl(stale, tmp_path / "train.jsonl")
+    assert FG.field_split("train", tmp_path) == fresh  # no stamp: not trusted
+    monkeypatch.setitem(FG.FIELD_SPLIT_SIZES, "train", 41)
+    assert FG.generator_fingerprint() != stamp.read_text().strip()  # the sizes are part of it
+
+
 def test_train_is_the_seeded_generation(train, tmp_path):
     assert len(train) == FG.FIELD_SPLIT_SIZES["train"]
     assert FG.generate_field_split("train", 300) == FG.generate_field_split("train", 300)

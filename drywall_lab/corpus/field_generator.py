@@ -23,6 +23,7 @@ through the information-mapping rules (tested). Splits: ``train`` (generated on 
 """
 from __future__ import annotations
 
+import hashlib
 import random
 from dataclasses import dataclass
 from pathlib import Path
@@ -684,17 +685,40 @@ def generate_field_split(split: str, n: int | None = None, seed: int = FIELD_SEE
 
 def write_field_corpus(out_dir: Path | str = FIELD_DIR, seed: int = FIELD_SEED,
                        splits: tuple[str, ...] = FIELD_SPLITS) -> dict[str, Path]:
-    """Write ``{split}.jsonl`` for each split; the same seed always gives the same bytes."""
-    return {s: write_jsonl(generate_field_split(s, seed=seed), Path(out_dir) / f"{s}.jsonl") for s in splits}
+    """Write ``{split}.jsonl`` for each split (``train`` with its fingerprint); the same seed always gives the
+    same bytes."""
+    written = {s: write_jsonl(generate_field_split(s, seed=seed), Path(out_dir) / f"{s}.jsonl") for s in splits}
+    if "train" in written:
+        written["train"].with_suffix(".fingerprint").write_text(generator_fingerprint(seed) + "\n", encoding="utf-8")
+    return written
+
+
+def generator_fingerprint(seed: int = FIELD_SEED) -> str:
+    """A hash of everything a generated split depends on: the corpus package's source, the site tables, the seed
+    and the split sizes. The cached ``train`` split carries it, so a changed generator never reads a stale one."""
+    digest = hashlib.sha256(f"{seed} {sorted(FIELD_SPLIT_SIZES.items())}".encode())
+    sources = sorted(Path(__file__).resolve().parent.glob("*.py")) + sorted((DATA_DIR / "site").glob("*.csv"))
+    for source in sources:
+        digest.update(source.name.encode() + b"\0" + source.read_bytes())
+    return digest.hexdigest()
 
 
 def field_split(split: str, corpus_dir: Path | str | None = None) -> list[dict]:
-    """The rows of one field split; ``train`` is generated (and cached in ``data/field_corpus/``) when missing."""
+    """The rows of one field split. ``train`` is generated and cached in the corpus directory, beside a
+    ``train.fingerprint`` file (``generator_fingerprint``); it is generated again when either is missing or the
+    generator has changed since."""
     if split not in FIELD_SPLITS:
         raise ValueError(f"unknown field split {split!r}; the field corpus has {', '.join(FIELD_SPLITS)}")
     path = Path(corpus_dir or FIELD_DIR) / f"{split}.jsonl"
-    if not path.is_file():
-        if split in COMMITTED_SPLITS and corpus_dir is None:
-            raise FileNotFoundError(f"{path} is missing: run `python -m drywall_lab corpus generate --field`")
+    if split in COMMITTED_SPLITS:
+        if not path.is_file():
+            if corpus_dir is None:
+                raise FileNotFoundError(f"{path} is missing: run `python -m drywall_lab corpus generate --field`")
+            write_jsonl(generate_field_split(split), path)
+        return read_jsonl(path)
+    stamp = path.with_suffix(".fingerprint")
+    fingerprint = generator_fingerprint()
+    if not (path.is_file() and stamp.is_file() and stamp.read_text(encoding="utf-8").strip() == fingerprint):
         write_jsonl(generate_field_split(split), path)
+        stamp.write_text(fingerprint + "\n", encoding="utf-8")
     return read_jsonl(path)

@@ -275,3 +275,51 @@ def test_readme_quotes_the_second_opinion_results() -> None:
     assert f"it chose `{summary[0].split('=')[1]}`" in readme
     for line in summary[1:]:
         assert f"`{line}" in readme or f" {line}`" in readme, line
+
+
+def test_field_seeds_quick_trains_missing_seeds_and_scores_each(tmp_path) -> None:
+    """benchmarks/field_seeds.py trains a seed only when its model is missing, and its figures are the field
+    benchmark's play of that model."""
+    from drywall_lab.nlu import load_tagger
+
+    script = load_script("field_seeds")
+    field = load_script("field")
+    models, out = tmp_path / "models", tmp_path / "seeds.md"
+    assert script.main(["--quick", "--seeds", "5", "--models", str(models), "--out", str(out)]) == 0
+    first = out.read_text(encoding="utf-8")
+    assert "seed 5: trained here" in first and (models / "seed5" / "tagger.json").is_file()
+    assert f"- cpu: {describe_machine().cpu}" in first
+    tagger = load_tagger(models / "seed5")
+    assert tagger.training_info["n_train_instructions"] == script.QUICK["train_size"]
+    played = field.run_set(field.FIELD_DIR, tagger)[1].loc["ALL"]
+    for figure in ("accuracy", "wrong_action_rate"):
+        value = float(re.search(rf"data_field_{figure}_mean=(\S+)", first).group(1))
+        assert value == pytest.approx(played[figure], abs=5e-5)
+    assert script.main(["--quick", "--seeds", "5", "--models", str(models), "--out", str(out)]) == 0
+    second = out.read_text(encoding="utf-8")
+    assert f"seed 5: found in {models / 'seed5'}" in second
+    assert second.split("## Summary")[1] == first.split("## Summary")[1]
+    with pytest.raises(SystemExit):
+        script.main(["--quick"])  # a quick run never overwrites the recorded results
+
+
+def test_readme_quotes_the_field_seeds_results() -> None:
+    text = (REPO / "benchmarks" / "results" / "field_seeds.md").read_text(encoding="utf-8")
+    assert "**Command:** `python benchmarks/field_seeds.py" in text and "--quick" not in text
+    assert re.search(r"shipped\s+True", text), "one of the seeds must be the shipped tagger, byte for byte"
+    readme = " ".join(README.read_text(encoding="utf-8").split())
+    for line in text.split("## Summary")[1].split("```")[1].split():
+        if "_mean=" in line or "_max=" in line:
+            assert line in readme, line
+
+
+def test_a_second_seed_as_check_is_recorded_as_the_readme_says() -> None:
+    """README: seed 1 as a second opinion turns none of the shipped tagger's wrong actions into a question."""
+    text = (REPO / "benchmarks" / "results" / "second_opinion_seed1.md").read_text(encoding="utf-8")
+    assert "--check build/field_seeds/seed1" in text and "--quick" not in text
+    assert "second_opinion_seed1.md" in README.read_text(encoding="utf-8")
+    summary = dict(item.split("=") for item in text.split("## Summary")[1].split("```")[1].split())
+    rule = summary["chosen"]
+    for name in ("data_field", "shared_field"):
+        assert summary[f"{name}_{rule}_wrong_action_rate"] == summary[f"{name}_none_wrong_action_rate"]
+        assert float(summary[f"{name}_{rule}_accuracy"]) <= float(summary[f"{name}_none_accuracy"])

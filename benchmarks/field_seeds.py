@@ -1,0 +1,142 @@
+"""How much of a field figure is the training run? The shipped recipe trained with several seeds, each played on the
+hand-written field sets.
+
+The shipped tagger is one training run (``make default-tagger``, seed 0). On 170 or 226 hand-written steps one
+instruction is half a point, and two runs of the same recipe on the same corpus can disagree on dozens of them.
+This script trains the shipped recipe (``drywall_lab.nlu.field_study.DEFAULT_FIELD_TAGGER``: BiLSTM-CRF with
+character features on the field corpus, one torch thread, CPU) with each seed of ``--seeds``, plays ``data/field``
+and, where it exists, ``../shared/field`` through the `run` contract with the decision layer (as
+``benchmarks/field.py`` does), and writes each seed's accuracy, wrong-action rate and over-refusal rate, with
+their mean, smallest and largest, to its results file (default ``benchmarks/results/field_seeds.md``).
+
+A seed's model is trained into ``--models``/seed<N> (default ``build/field_seeds``) unless a trained tagger is
+already there; training is bit for bit on the CPU with one thread, so a model found there is the one the command
+would train. Up to ``--jobs`` seeds train at once (about 9 min each on the 2-core CPU with two at once).
+
+    python benchmarks/field_seeds.py [--seeds 0 1 2] [--models DIR] [--jobs 2] [--out FILE] [--quick]
+"""
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pandas as pd
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from field import field_sets, run_set  # noqa: E402 (benchmarks/field.py: the same play and scores)
+
+from drywall_lab.machine import describe_machine  # noqa: E402
+from drywall_lab.nlu import DEFAULT_TAGGER_DIR, load_tagger  # noqa: E402
+from drywall_lab.nlu.field_study import DEFAULT_FIELD_TAGGER  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+RESULTS = ROOT / "benchmarks" / "results" / "field_seeds.md"
+MODELS = ROOT / "build" / "field_seeds"
+FIGURES = ("accuracy", "wrong_action_rate", "over_refusal_rate")
+QUICK = {"train_size": 300, "epochs": 1}
+
+
+def train_command(seed: int, out: Path, quick: bool) -> list[str]:
+    """The `train` command of the shipped recipe (the Makefile's `default-tagger`) for one seed."""
+    recipe = DEFAULT_FIELD_TAGGER
+    command = [sys.executable, "-m", "drywall_lab", "train", "bilstm-crf", "--corpus", recipe["corpus"],
+               "--batch-size", str(recipe["batch_size"]), "--epochs", str(QUICK["epochs"] if quick else recipe["epochs"]),
+               "--device", "cpu", "--seed", str(seed), "--out", str(out)]
+    if recipe["char_features"]:
+        command.append("--char-features")
+    if quick:
+        command += ["--train-size", str(QUICK["train_size"])]
+    return command
+
+
+def train_missing(seeds: list[int], models: Path, jobs: int, quick: bool) -> dict[int, str]:
+    """Train every seed whose directory holds no tagger yet, ``jobs`` at a time; how each model was had."""
+    how, queue, running = {}, [], []
+    for seed in seeds:
+        out = models / f"seed{seed}"
+        if (out / "tagger.json").is_file():
+            how[seed] = f"found in {out}"
+        else:
+            queue.append((seed, out))
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    while queue or running:
+        while queue and len(running) < max(1, jobs):
+            seed, out = queue.pop(0)
+            out.parent.mkdir(parents=True, exist_ok=True)
+            log = open(out.parent / f"seed{seed}.log", "w", encoding="utf-8")
+            running.append((seed, out, log, time.perf_counter(),
+                            subprocess.Popen(train_command(seed, out, quick), cwd=ROOT, env=env, stdout=log,
+                                             stderr=subprocess.STDOUT)))
+            print(f"training seed {seed} into {out}", flush=True)
+        for item in list(running):
+            seed, out, log, started, process = item
+            if process.poll() is None:
+                continue
+            log.close()
+            running.remove(item)
+            if process.returncode != 0:
+                raise RuntimeError(f"training seed {seed} failed (exit {process.returncode}); see {log.name}")
+            how[seed] = f"trained here in {time.perf_counter() - started:.0f} s"
+        time.sleep(1)
+    return how
+
+
+def weights_digest(directory: Path) -> str:
+    return hashlib.sha256((directory / "weights.safetensors").read_bytes()).hexdigest()
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], help="the seeds to train (default 0 1 2)")
+    parser.add_argument("--models", type=Path, default=MODELS, help=f"where the models go (default {MODELS.relative_to(ROOT)})")
+    parser.add_argument("--jobs", type=int, default=2, help="seeds trained at once (default 2)")
+    parser.add_argument("--out", type=Path, default=None, help=f"results file (default {RESULTS.relative_to(ROOT)})")
+    parser.add_argument("--quick", action="store_true", help="300 instructions and one epoch a seed (needs --out)")
+    args = parser.parse_args(argv)
+    if args.quick and args.out is None:
+        parser.error("--quick needs --out: the recorded results are full runs")
+    out = args.out or RESULTS
+    machine = describe_machine()
+    started = time.perf_counter()
+    how = train_missing(sorted(set(args.seeds)), args.models, args.jobs, args.quick)
+    shipped = weights_digest(DEFAULT_TAGGER_DIR)
+    rows = []
+    for seed in sorted(how):
+        directory = args.models / f"seed{seed}"
+        tagger = load_tagger(directory)
+        row = {"seed": seed, "n_train": tagger.training_info.get("n_train_instructions"),
+               "epochs": tagger.training_info.get("epochs"), "shipped": weights_digest(directory) == shipped}
+        for name, field_dir in field_sets().items():
+            scores = run_set(field_dir, tagger)[1].loc["ALL"]
+            row.update({f"{name} {figure}": float(scores[figure]) for figure in FIGURES})
+        rows.append(row)
+        print(json.dumps(row), flush=True)
+    table = pd.DataFrame(rows).set_index("seed")
+    figures = [c for c in table.columns if c.split(" ")[-1] in FIGURES]
+    spread = table[figures].agg(["mean", "min", "max"])
+    command = "python benchmarks/field_seeds.py" + "".join(f" {a}" for a in (argv if argv is not None else sys.argv[1:]))
+    summary = [f"{column.replace(' ', '_')}_{stat}={spread.loc[stat, column]:.4f}"
+               for column in figures if not column.endswith("over_refusal_rate") for stat in ("mean", "min", "max")]
+    lines = ["# The shipped recipe, seed by seed, on the field sets (`benchmarks/field_seeds.py`)", "",
+             f"**Command:** `{command}`", "", *machine.markdown_lines(),
+             f"- wall time: {(time.perf_counter() - started) / 60:.1f} min", "",
+             "The models: " + "; ".join(f"seed {seed}: {text}" for seed, text in sorted(how.items())) + ". `shipped`: "
+             "the model's weights are the shipped tagger's, byte for byte. Each figure is a share of the steps, played "
+             "episode by episode as `run` plays them, with the decision layer's default settings.", "",
+             "```", table[["n_train", "epochs", "shipped"]].T.to_string(), "",
+             pd.concat([table[figures].T.add_prefix("seed "), spread.T], axis=1).to_string(float_format=lambda x: f"{x:.4f}"),
+             "```", "", "## Summary", "", "```", *summary, "```", ""]
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text("\n".join(lines), encoding="utf-8")
+    print("\n".join(summary))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

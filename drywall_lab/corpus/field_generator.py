@@ -717,8 +717,7 @@ def field_split(split: str, corpus_dir: Path | str | None = None) -> list[dict]:
             write_jsonl(generate_field_split(split), path)
         return read_jsonl(path)
     stamp = path.with_suffix(".fingerprint")
-    fingerprint = generator_fingerprint()
-    if not (path.is_file() and stamp.is_file() and stamp.read_text(encoding="utf-8").strip() == fingerprint):
-        write_jsonl(generate_field_split(split), path)
-        stamp.write_text(fingerprint + "\n", encoding="utf-8")
+    if not (path.is_file() and stamp.is_file()
+            and stamp.read_text(encoding="utf-8").strip() == generator_fingerprint()):
+        write_field_corpus(path.parent, splits=(split,))  # the split and its fingerprint
     return read_jsonl(path)

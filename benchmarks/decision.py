@@ -2,12 +2,19 @@
 
 The thresholds are chosen on the **generated** field corpus only: its validation split (the families the
 tagger was trained on) and its novel split (held-back families), never on the hand-written field sets,
-which stay a measuring stick. For every setting of the grid the script decides each instruction of both
-splits (in its own episode context) and counts right outcomes, wrong actions (the robot acted, not as
-intended) and over-refusals (a refusal or a question where a command was expected). The rule:
+which stay a measuring stick. For every setting of the grid the script plays both splits' episodes as
+``run`` plays them (each step against the commands the pipeline itself acted on before it) with every tagger given and counts right outcomes, wrong actions (the
+robot acted, not as intended) and over-refusals (a refusal or a question where a command was expected).
+The rule:
 
-    cost = WRONG_ACTION_COST x wrong-action rate + over-refusal rate, averaged over the two splits;
-    the setting of least cost wins; ties go to the more careful setting (higher ``act``, then ``recover``).
+    cost = WRONG_ACTION_COST x wrong-action rate + over-refusal rate, averaged over the two splits and the
+    taggers; the setting of least cost wins; ties go to the more careful setting (higher ``act``, then
+    ``recover``).
+
+One training run is one draw (``benchmarks/field_seeds.py``): thresholds chosen for one model fit its
+particular mistakes. Given the same recipe trained with several seeds (``--tagger`` once per model), the
+script chooses for the recipe, by the mean cost over the models, and records what each model alone would
+have chosen, so that the choice can be seen to be stable (or not).
 
 A wrong action moves a 25 kg sheet to the wrong place; a question costs the worker a few seconds, so a
 wrong action counts as ``WRONG_ACTION_COST`` questions. The script also writes the risk-coverage curve
@@ -15,7 +22,11 @@ of the chosen setting (the ``act`` threshold moved, everything else fixed) and t
 to its results file (default ``benchmarks/results/decision.md``), with the machine, the date and the
 command. ``drywall_lab.decision.DEFAULT_SETTINGS`` must equal the recorded choice (a test checks it).
 
-    python benchmarks/decision.py [--tagger DIR] [--out FILE] [--quick]
+    python benchmarks/decision.py [--tagger DIR ...] [--out FILE] [--quick]
+
+The recorded choice: ``python benchmarks/field_seeds.py`` (the shipped recipe with seeds 0-2 in
+``build/field_seeds``), then ``python benchmarks/decision.py --tagger build/field_seeds/seed0 --tagger
+build/field_seeds/seed1 --tagger build/field_seeds/seed2``.
 """
 from __future__ import annotations
 
@@ -28,7 +39,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, decide, decision_scores,
+from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, decision_scores, play_episode,
                                   risk_coverage)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.machine import describe_machine
@@ -42,31 +53,50 @@ WRONG_ACTION_COST = 10
 GRID = {
     "act": (0.0, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95),
     "recover": (0.2, 0.4, 0.6, 1.0),
-    "doubt": (0.05, 0.1, 0.2, 0.35, 1.0),
+    "doubt": (0.05, 0.2, 1.0),
     "margin": (1.5, 3.0, 5.0),
+    "pending": (True, False),
 }
-QUICK_GRID = {"act": (0.0, 0.7), "recover": (0.4, 1.0), "doubt": (0.2, 1.0), "margin": (3.0,)}
+#: The columns and order of the sort that ranks the settings: least cost, then the more careful (higher act,
+#: lower recover, lower doubt, wider margin, asking about a back-reference after a step not understood).
+SETTINGS = ["act", "recover", "doubt", "margin", "pending"]
+ORDER = [True, False, True, True, False, False]
+QUICK_GRID = {"act": (0.0, 0.7), "recover": (0.4, 1.0), "doubt": (0.2, 1.0), "margin": (3.0,), "pending": (True, False)}
 
 
 class Readings:
-    """The tagger's readings of one split, tagged once, and a cache of the IM's interpretations."""
+    """The tagger's readings of one split, tagged once, and a cache of the IM's interpretations.
+
+    ``decide`` plays the split's episodes as ``run`` plays them: each step is decided against the history of the
+    commands the pipeline itself acted on before it in its episode (starting from the episode's own first
+    context), so that a refusal or a wrong action early in an episode costs what it costs in the field, where
+    "the same stud again" then points at another command. Rows are scored against their intended outcome."""
 
     def __init__(self, rows: list[dict], tagger, k: int) -> None:
         self.rows = rows
         self.labels = tagger.labels
         self.confidences = tagger.predict_confidence([r["words"] for r in rows], k=k)
-        self.histories = [ActionHistory.from_commands(r["context"]["history"]) for r in rows]
-        self._cache: dict[tuple[int, tuple[str, ...]], object] = {}
+        episodes: dict[str, list[int]] = {}
+        for i, row in enumerate(rows):
+            episodes.setdefault(row["context"]["episode"], []).append(i)
+        self.episodes = [sorted(steps, key=lambda i: rows[i]["context"]["step"]) for steps in episodes.values()]
+        self._cache: dict[tuple, object] = {}
+
+    def interpret(self, words, tags, history):
+        """The IM's ``interpret``, cached on the words, the tags and the commands in the history."""
+        key = (tuple(words), tuple(tags), tuple((c.drywall_id, c.stud_id, c.placement.value) for c in history.commands))
+        if key not in self._cache:
+            self._cache[key] = interpret(words, tags, history)
+        return self._cache[key]
 
     def decide(self, settings: DecisionSettings) -> list:
-        out = []
-        for i, (row, conf, history) in enumerate(zip(self.rows, self.confidences, self.histories)):
-            def cached(words, tags, hist, i=i):
-                key = (i, tuple(tags))
-                if key not in self._cache:
-                    self._cache[key] = interpret(words, tags, hist)
-                return self._cache[key]
-            out.append(decide(row["words"], conf.kbest, conf.marginals, self.labels, history, settings, cached))
+        out: list = [None] * len(self.rows)
+        for steps in self.episodes:
+            history = ActionHistory.from_commands(self.rows[steps[0]]["context"]["history"])
+            decisions = play_episode([self.rows[i]["words"] for i in steps], [self.confidences[i] for i in steps],
+                                     self.labels, history, settings, self.interpret)
+            for i, decision in zip(steps, decisions):
+                out[i] = decision
         return out
 
 
@@ -74,64 +104,115 @@ def cost(scores: dict[str, float]) -> float:
     return WRONG_ACTION_COST * scores["wrong_action_rate"] + scores["over_refusal_rate"]
 
 
-def choose(readings: dict[str, Readings], grid: dict[str, tuple]) -> tuple[DecisionSettings, pd.DataFrame]:
-    """Every setting of the grid scored on every split; the setting of least mean cost (ties: more careful)."""
+def _key(settings: DecisionSettings) -> tuple:
+    return tuple(getattr(settings, name) for name in SETTINGS)
+
+
+def _least_cost(table: pd.DataFrame, column: str) -> pd.Series:
+    """The row of least ``column``; ties go to the more careful setting (``ORDER``)."""
+    return table.sort_values([column, *SETTINGS], ascending=ORDER, kind="stable").iloc[0]
+
+
+def _settings_of(row: pd.Series) -> DecisionSettings:
+    return replace(DEFAULT_SETTINGS, act=float(row["act"]), recover=float(row["recover"]), doubt=float(row["doubt"]),
+                   margin=float(row["margin"]), pending=bool(row["pending"]))
+
+
+def choose(readings: dict[str, dict[str, Readings]], grid: dict[str, tuple]) -> tuple[DecisionSettings, pd.DataFrame]:
+    """Every setting of the grid scored on every split with every tagger (``readings[tagger][split]``); the setting
+    of least mean cost over them all wins (ties: the more careful). The table has one row a setting: the mean
+    rates over the taggers for each split, each tagger's own cost (``cost:<tagger>``) and the mean ``cost``."""
     rows = []
-    for act, recover, doubt, margin in itertools.product(grid["act"], grid["recover"], grid["doubt"], grid["margin"]):
-        settings = replace(DEFAULT_SETTINGS, act=act, recover=recover, doubt=doubt, margin=margin)
-        record = {"act": act, "recover": recover, "doubt": doubt, "margin": margin}
+    for values in itertools.product(*(grid[name] for name in SETTINGS)):
+        record: dict = dict(zip(SETTINGS, values))
+        settings = replace(DEFAULT_SETTINGS, **record)
+        per_split: dict[str, list[dict]] = {}
         costs = []
-        for split, r in readings.items():
-            scores = decision_scores(r.rows, r.decide(settings))
-            record.update({f"{split}:{k}": v for k, v in scores.items()})
-            costs.append(cost(scores))
+        for name, splits in readings.items():
+            own = []
+            for split, r in splits.items():
+                scores = decision_scores(r.rows, r.decide(settings))
+                per_split.setdefault(split, []).append(scores)
+                own.append(cost(scores))
+            record[f"cost:{name}"] = sum(own) / len(own)
+            costs.extend(own)
+        for split, scores in per_split.items():
+            for k in scores[0]:
+                record[f"{split}:{k}"] = sum(s[k] for s in scores) / len(scores)
         record["cost"] = sum(costs) / len(costs)
         rows.append(record)
     table = pd.DataFrame(rows)
-    best = table.sort_values(["cost", "act", "recover", "doubt", "margin"], ascending=[True, False, True, True, False],
-                             kind="stable").iloc[0]
-    chosen = replace(DEFAULT_SETTINGS, act=float(best["act"]), recover=float(best["recover"]),
-                     doubt=float(best["doubt"]), margin=float(best["margin"]))
-    return chosen, table
+    return _settings_of(_least_cost(table, "cost")), table
+
+
+def each_alone(table: pd.DataFrame, names: list[str], chosen: DecisionSettings) -> pd.DataFrame:
+    """What each tagger alone would have chosen, its cost there, and its cost at the joint choice."""
+    joint = table[(table[SETTINGS] == pd.Series(dict(zip(SETTINGS, _key(chosen))))).all(axis=1)].iloc[0]
+    out = []
+    for name in names:
+        best = _least_cost(table, f"cost:{name}")
+        out.append({"tagger": name, "own choice": str(_key(_settings_of(best))), "own cost": best[f"cost:{name}"],
+                    "cost at the joint choice": joint[f"cost:{name}"]})
+    return pd.DataFrame(out)
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped one)")
+    parser.add_argument("--tagger", action="append", default=None,
+                        help="a saved tagger's directory; give it once per model to choose for a recipe across "
+                             "seeds (default: the shipped tagger alone)")
     parser.add_argument("--out", type=Path, default=None, help=f"results file (default {RESULTS.relative_to(ROOT)})")
     parser.add_argument("--quick", action="store_true", help="200 instructions a split and a small grid (needs --out)")
     args = parser.parse_args(argv)
     if args.quick and args.out is None:
         parser.error("--quick writes a check, not the recorded choice: give --out")
+    options = args.tagger or [None]
+    names = [option or "the shipped tagger" for option in options]
+    if len(set(names)) != len(names):
+        parser.error("each --tagger must name a different model")
     out = args.out or RESULTS
     machine = describe_machine()
-    tagger = load_tagger_option(args.tagger)
     grid = QUICK_GRID if args.quick else GRID
     started = time.perf_counter()
-    readings = {s: Readings(split_rows(s)[:200] if args.quick else split_rows(s), tagger, DEFAULT_SETTINGS.k)
-                for s in SPLITS}
+    readings: dict[str, dict[str, Readings]] = {}
+    for name, option in zip(names, options):
+        tagger = load_tagger_option(option)
+        readings[name] = {s: Readings(split_rows(s)[:200] if args.quick else split_rows(s), tagger, DEFAULT_SETTINGS.k)
+                          for s in SPLITS}
     chosen, table = choose(readings, grid)
+    first = readings[names[0]]
     lines = ["# Decision layer: thresholds and risk against coverage (`benchmarks/decision.py`)", "",
              f"**Command:** `python benchmarks/decision.py{''.join(' ' + a for a in (argv if argv is not None else sys.argv[1:]))}`",
-             "", f"**Tagger:** {args.tagger or 'the shipped default tagger'}", "", *machine.markdown_lines(), "",
-             f"Splits: {', '.join(f'{s} ({len(r.rows)} instructions)' for s, r in readings.items())}; "
+             "", f"**Taggers:** {', '.join(names)}", "", *machine.markdown_lines(), "",
+             f"Splits: {', '.join(f'{s} ({len(r.rows)} instructions)' for s, r in first.items())}; "
              f"{len(table)} settings; rule: least mean of {WRONG_ACTION_COST} x wrong-action rate + over-refusal "
-             "rate, ties to the more careful setting.", "",
+             f"rate over the splits and the {len(names)} tagger(s), ties to the more careful setting.", "",
              "## Choice", "", "```", f"chosen={asdict(chosen)}", "```", ""]
+    if len(names) > 1:
+        alone = each_alone(table, names, chosen)
+        lines += ["## Each tagger alone", "",
+                  f"The setting ({', '.join(SETTINGS)}) of least cost for each tagger on its own, and its cost "
+                  "at the joint choice:", "", "```", alone.to_string(index=False, float_format=lambda x: f"{x:.4f}"),
+                  "```", ""]
     compare = []
-    for name, settings in (("best path (the paper)", BEST_PATH), ("chosen", chosen)):
-        for split, r in readings.items():
-            compare.append({"setting": name, "split": split, **decision_scores(r.rows, r.decide(settings))})
+    for label, settings in (("best path (the paper)", BEST_PATH), ("chosen", chosen)):
+        for name, splits in readings.items():
+            for split, r in splits.items():
+                compare.append({"setting": label, "tagger": name, "split": split,
+                                **decision_scores(r.rows, r.decide(settings))})
     compare_table = pd.DataFrame(compare)
+    if len(names) == 1:
+        compare_table = compare_table.drop(columns=["tagger"])
     lines += ["## Best path against the chosen setting", "", "```",
               compare_table.to_string(index=False, float_format=lambda x: f"{x:.4f}"), "```", ""]
-    lines += ["## Risk against coverage (chosen setting, `act` moved)", ""]
-    for split, r in readings.items():
+    lines += [f"## Risk against coverage (chosen setting, `act` moved; {names[0]})", ""]
+    for split, r in first.items():
         curve = risk_coverage(r.rows, r.decide(replace(chosen, act=0.0)))
         picks = curve.iloc[sorted({int(i) for i in pd.Series(range(len(curve))).quantile([0, .5, .8, .9, .95, .98, 1]).round()})]
         lines += [f"{split}:", "", "```", picks.to_string(index=False, float_format=lambda x: f"{x:.4f}"), "```", ""]
-    best_rows = table.sort_values("cost").head(10)
-    lines += ["## The ten settings of least cost", "", "```",
+    best_rows = table.sort_values(["cost", *SETTINGS], ascending=ORDER, kind="stable").head(10)
+    lines += ["## The ten settings of least cost", "",
+              "Rates: the mean over the taggers; `cost:<tagger>`: each tagger's own cost.", "", "```",
               best_rows.to_string(index=False, float_format=lambda x: f"{x:.4f}"), "```", "",
               f"{time.perf_counter() - started:.0f} s in all.", ""]
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -14,7 +14,8 @@ measures the rule with a given second tagger (``--check DIR``, a saved tagger), 
 
 It writes its results file (default ``benchmarks/results/second_opinion.md``) with the machine, the date, the
 command and both taggers. The check tagger used for the recorded results is MiniLM fine-tuned on the field
-corpus as the ablation trains it (17 min on the 2-core CPU; its 91 MB of weights are not in the repository):
+corpus as the ablation trains it (35 min on the 2-core CPU beside another job; its 91 MB of weights are not in
+the repository):
 
     python -m drywall_lab train bert --corpus field --epochs 2 --learning-rate 3e-4 --warmup-ratio 0.1 \\
         --device cpu --seed 0 --out models/minilm_field

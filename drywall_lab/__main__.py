@@ -273,7 +273,8 @@ def _cmd_experiment(args: argparse.Namespace) -> int:
     if args.study == "field":
         from drywall_lab.nlu.field_study import FieldStudySettings, run_field_study
 
-        run_field_study(args.out or "results/field", FieldStudySettings.fast() if args.fast else FieldStudySettings.full())
+        run_field_study(args.out or "results/field", FieldStudySettings.fast() if args.fast else FieldStudySettings.full(),
+                        args.models)
         return 0
     from drywall_lab.nlu.experiments import ExperimentSettings, run_paper_experiment
 
@@ -313,6 +314,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("study", choices=["paper", "field"])
     p.add_argument("--out", default=None, help="output folder (default results/paper or results/field)")
     p.add_argument("--fast", action="store_true", help="an eighth of the data and 3 / 1 epochs: a quick check, not the study")
+    p.add_argument("--models", nargs="+", default=None, metavar="MODEL",
+                   help='field: train only these models of the ablation, e.g. "MiniLM field" (the others\' rows are '
+                        "kept when they are current); two runs with different models may run at once")
     p.set_defaults(func=_cmd_experiment)
 
     p = sub.add_parser("interpret", help="one instruction: tags, the information-mapping rule trace, the command")

@@ -17,8 +17,9 @@ ALL_SPLITS = PAPER_SPLITS + FIELD_CORPUS_SPLITS + (FIELD_SET,)
 #: What ``evaluate`` accepts: every set but the training splits.
 EVALUATION_SPLITS = ("validation", "test", "novel", "field-validation", "field-test", "field-novel", FIELD_SET)
 #: The training corpora: (training splits, validation split). The field corpus trains on its own training
-#: split and the paper corpus's, so that the paper's phrasings are kept (the test split stays at the paper's level).
-CORPORA = {"paper": (("train",), "validation"), "field": (("field-train", "train"), "field-validation")}
+#: split and the paper corpus's, the latter twice: beside 20,000 field instructions in fifteen registers, the
+#: paper's 1,268 formal phrasings keep enough weight that its test split stays at the paper's level (issue 11).
+CORPORA = {"paper": (("train",), "validation"), "field": (("field-train", "train", "train"), "field-validation")}
 
 
 def split_rows(name: str) -> list[dict]:

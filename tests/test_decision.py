@@ -10,8 +10,8 @@ import pytest
 from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, decide, decide_episode, decide_rows,
-                                  decide_tags, decision_scores, outcome_of, question_between, risk_coverage,
-                                  second_opinion, step_outcome)
+                                  decide_tags, decision_scores, not_carried_out, outcome_of, play_episode,
+                                  question_between, risk_coverage, second_opinion, step_outcome)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
 from drywall_lab.splits import split_rows
@@ -144,6 +144,89 @@ def test_decide_episode_records_only_what_it_acts_on():
     decisions = decide_episode([t.split() for t in texts], tagger, DEFAULT_SETTINGS, history)
     assert [d.acted for d in decisions][:2] == [True, False]
     assert len(history) == sum(d.acted for d in decisions)
+
+
+class _Gold:
+    """A tagger's readings that are the given tags for certain."""
+
+    def __init__(self, tags):
+        self.kbest, self.marginals = [(list(tags), 0.0)], _sure(list(tags))
+
+
+@pytest.mark.parametrize("split", ["field-validation", "field-novel", "field-set"])
+def test_gold_tags_played_as_episodes_give_every_intended_outcome(split):
+    """Played as run plays them (the pipeline's own history, step 5 on), gold tags still give every outcome."""
+    rows = split_rows(split)
+    episodes: dict[str, list[dict]] = {}
+    for row in rows:
+        episodes.setdefault(row["context"]["episode"], []).append(row)
+    for steps in episodes.values():
+        steps.sort(key=lambda r: r["context"]["step"])
+        history = ActionHistory.from_commands(steps[0]["context"]["history"])
+        decisions = play_episode([r["words"] for r in steps], [_Gold(r["tags"]) for r in steps], TAGS, history)
+        for row, d in zip(steps, decisions):
+            assert d.interpretation.outcome() == dict(row["expected"]), row["id"]
+
+
+SAME_SIZE = "the same/dim size/dim as last/dim time/dim on stud 500108/ID_stud"
+
+
+def _unsure(words, tags_a, tags_b):
+    """Readings that give two commands with nearly equal probability: the robot asks."""
+    r = _Gold(tags_a)
+    r.kbest = [(list(tags_a), math.log(0.5)), (list(tags_b), math.log(0.45))]
+    return r
+
+
+def test_a_command_that_rests_on_an_unanswered_question_is_asked_about():
+    """Step 5: had the robot carried out the command it asked about, "the same size as last time" would be another
+    panel; the worker may mean that one, so the robot asks, naming both."""
+    first, first_tags = _wt("Put panel 500320/ID_wall on stud 500100/ID_stud")
+    unsure, unsure_tags = _wt(CENTRE)
+    left = ["O" if t == "Vr_md" else t for t in unsure_tags]
+    same, same_tags = _wt(SAME_SIZE)
+    readings = [_Gold(first_tags), _unsure(unsure, unsure_tags, left), _Gold(same_tags)]
+    history = ActionHistory()
+    decisions = play_episode([first, unsure, same], readings, TAGS, history)
+    assert [d.action for d in decisions] == ["act", "ask", "ask"]
+    assert decisions[2].refusal.reason == "unclear"
+    message = decisions[2].refusal.message
+    assert message.startswith(f'I have not carried out "{" ".join(unsure)}". As things stand this is panel ')
+    own, other = decisions[2].options
+    assert own[2] == other[2] == "500108" and own[1] != other[1]  # a full-size panel, or a 2 x 8 one
+    assert f"panel {own[1]}" in message and f"panel {other[1]}" in message
+    assert "D unanswered question" in str(decisions[2].interpretation.trace)
+    assert len(history) == 1  # the questions record nothing
+    # switched off, the robot acts on the last command it carried out, as the paper's pipeline does
+    from dataclasses import replace
+    history = ActionHistory()
+    off = play_episode([first, unsure, same], readings, TAGS, history, replace(DEFAULT_SETTINGS, pending=False))
+    assert off[2].action == "act" and off[2].command.drywall_id == own[1] and len(history) == 2
+
+
+def test_a_command_the_question_does_not_touch_is_acted_on():
+    first, first_tags = _wt("Put panel 500320/ID_wall on stud 500100/ID_stud")
+    unsure, unsure_tags = _wt(CENTRE)
+    left = ["O" if t == "Vr_md" else t for t in unsure_tags]
+    named, named_tags = _wt("Put panel 500322/ID_wall on stud 500108/ID_stud")
+    same, same_tags = _wt(SAME_SIZE)
+    # a command the asked-about one (a panel on stud 500104) would not change is acted on
+    decisions = play_episode([first, unsure, named],
+                             [_Gold(first_tags), _unsure(unsure, unsure_tags, left), _Gold(named_tags)],
+                             TAGS, ActionHistory())
+    assert [d.action for d in decisions] == ["act", "ask", "act"]
+    # a refusal for what was said (undetermined, or the site's) is a definite answer: "previous" is the last
+    # accepted command (spec section 3)
+    garbled = "put it over there".split()
+    decisions = play_episode([first, garbled, same], [_Gold(first_tags), _Gold(["O"] * 4), _Gold(same_tags)],
+                             TAGS, ActionHistory())
+    assert decisions[1].refusal.reason == "undetermined" and decisions[2].action == "act"
+    overlap, overlap_tags = _wt("Put panel 500321/ID_wall on stud 500100/ID_stud")
+    decisions = play_episode([first, overlap, same], [_Gold(first_tags), _Gold(overlap_tags), _Gold(same_tags)],
+                             TAGS, ActionHistory())
+    assert decisions[1].refusal.reason == "overlap" and decisions[2].action == "act"
+    history = ActionHistory()
+    assert not_carried_out(decisions[1], decisions[:1], history) is decisions[1]  # not acting: unchanged
 
 
 # --- a second opinion ------------------------------------------------------------------------------------------

@@ -339,3 +339,34 @@ def test_the_field_corpus_trains_on_both_training_splits():
         training_rows("web")
     paper = training_rows("paper")
     assert len(paper) == 1268 and {r["id"][:5] for r in paper} == {"train"}
+
+
+def test_the_ablation_is_put_together_from_current_rows(tmp_path):
+    """``experiment field --models``: a run trains only the models named, keeps each row with a fingerprint, and
+    the table holds every current row (in study order); a row from another corpus or setting is left out."""
+    import json
+
+    from drywall_lab.nlu.field_study import FieldStudySettings, read_ablation, run_field_study
+
+    tiny = FieldStudySettings(lstm_epochs={"paper": 1, "field": 1}, bert_epochs={"paper": 1, "field": 1},
+                              train_sizes={"paper": 40, "field": 40}, evaluation_size=8)
+    with pytest.raises(ValueError, match="unknown model.*LSTM paper"):
+        run_field_study(tmp_path, tiny, ["LSTM web"])
+    table = run_field_study(tmp_path, tiny, ["LSTM paper"])
+    assert list(table["model"]) == ["LSTM paper"] and table.loc[0, "n_train"] == 40
+    assert 0 <= table.loc[0, "data/field decided wrong"] <= 1
+    readme = (tmp_path / "README.md").read_text(encoding="utf-8")
+    assert "Not run yet with the current corpus and settings: LSTM+char paper, MiniLM paper" in readme
+    row_file = tmp_path / "rows" / "lstm-paper.json"
+    kept = json.loads(row_file.read_text(encoding="utf-8"))
+    assert kept["row"]["model"] == "LSTM paper"
+    # another run with another model keeps the first row; the table follows the study's order
+    (tmp_path / "rows" / "lstm-char-paper.json").write_text(json.dumps({**kept, "row": {**kept["row"], "model": "LSTM+char paper"}}))
+    table = run_field_study(tmp_path, tiny, [])
+    assert list(table["model"]) == ["LSTM paper", "LSTM+char paper"]
+    assert read_ablation(tmp_path)[0].index.tolist() == ["LSTM paper", "LSTM+char paper"]
+    # a row whose fingerprint is not current (another corpus, other settings) is not shown
+    row_file.write_text(json.dumps({**kept, "fingerprint": "old"}))
+    table = run_field_study(tmp_path, tiny, [])
+    assert list(table["model"]) == ["LSTM+char paper"]
+    assert "Not run yet with the current corpus and settings: LSTM paper, MiniLM paper" in (tmp_path / "README.md").read_text()

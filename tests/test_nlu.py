@@ -254,7 +254,7 @@ def test_the_default_tagger_is_shipped_small_and_accurate() -> None:
     assert tagger.uses_characters and tagger.network.char_cnn is not None and tagger.device == "cpu"
     assert sum(f.stat().st_size for f in DEFAULT_TAGGER_DIR.iterdir()) < 4_000_000
     assert len(tagger.history) == DEFAULT_FIELD_TAGGER["epochs"] and tagger.batch_size == DEFAULT_FIELD_TAGGER["batch_size"]
-    assert tagger.training_info["n_train_instructions"] == len(read_split("train")) + 20000
+    assert tagger.training_info["n_train_instructions"] == 2 * len(read_split("train")) + 20000  # splits.CORPORA
     test_scores = tagger.evaluate(read_split("test"))
     assert test_scores.acc_inst >= 0.994
     assert test_scores.acc_word >= 0.999

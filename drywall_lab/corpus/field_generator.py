@@ -6,14 +6,20 @@ about half of hand-written field instructions. The field corpus keeps the same e
 meanings (``command_meaning`` and ``refusal_meaning``: every target and stud kind, the four
 placements, every refusal) and says them through a much richer grammar:
 
-- **registers**: formal, polite and hedging, foreman and trade talk, verbless fragments, lists and
-  key-value notes, speech-recogniser text (lowercase, fillers, restarts), radio, non-native word
-  order, self-corrections (the final intention counts; the abandoned words are ``O``), context or
-  a reason first, and questions;
+- **registers**: formal, polite and hedging, foreman and trade talk, verbless fragments, lists,
+  checklists and key-value notes, speech-recogniser text (lowercase, fillers, restarts), radio (with
+  prowords: ``break``, ``I say again``), non-native word order and prepositions, self-corrections (the
+  final intention counts; the abandoned words are ``O``: a phrase, a whole sentence, a negated
+  alternative, "did I say ...? I meant ..."), context or a reason first, questions (also asked and
+  answered), phone messages (also an apprentice checking), explanations (a reason after, a lesson, a
+  purpose first, a story of what happened before, clauses around the instruction), an impatient boss
+  (barked pieces, a repeated id) and a site engineer's notes with technical detail whose numbers are ``O``;
+- **clause orders**: the stud, the placement or the panel first or last, asides between the parts, the
+  placement wrapped round the stud ("with its edge on the centre line of stud 500105");
 - **vocabulary** (``field_phrases.py``): trade nouns, sizes in one word and with feet marks, number
   words, many wordings of each stack, stud and placement;
-- **noise**: dropped articles, inserted fillers, lost casing and punctuation, stutters and typos in
-  words that carry no tag.
+- **noise**: dropped articles, inserted fillers, lost casing and punctuation (or Title Case, or a
+  boss's capitals), stutters and typos in words that carry no tag.
 
 Every row has the paper corpus's fields (words, 13-label tags, co-reference tags, context, meaning,
 expected) plus its ``register``. With the gold tags every row gives its expected command or refusal
@@ -52,8 +58,9 @@ FIELD_WEIGHTS = G.MeaningWeights(
 )
 #: How often each register is used.
 REGISTERS: dict[str, float] = {
-    "formal": 0.09, "polite": 0.09, "foreman": 0.12, "fragment": 0.11, "list": 0.07, "speech": 0.12,
-    "radio": 0.07, "non_native": 0.09, "correction": 0.09, "context": 0.07, "question": 0.08, "texting": 0.06,
+    "formal": 0.08, "polite": 0.07, "foreman": 0.11, "fragment": 0.10, "list": 0.06, "speech": 0.10,
+    "radio": 0.06, "non_native": 0.08, "correction": 0.08, "context": 0.05, "question": 0.06, "texting": 0.05,
+    "explain": 0.04, "boss": 0.03, "engineer": 0.03,
 }
 
 
@@ -123,7 +130,16 @@ def size_phrase(ch: Chooser, ref: G.TargetRef) -> Phrase:
         first = _number(ch, b, "length") + plain(rng.choice(["long", "foot long", "feet long", "ft long"]))
         second = _number(ch, a, "width") + plain(rng.choice(["wide", "foot wide", "feet wide", "ft wide"]))
         return first + plain(rng.choice(["by", "and", "x", ""])) + second
-    form = rng.randrange(9)
+    form = rng.randrange(11)
+    if form >= 9:  # the roles named, in either order: "length 8 and width 4", "the width is 4 feet, the length 8"
+        unit = rng.choice(["", "", "feet", "foot", "ft"])
+        width = plain(rng.choice(["width", "the width is", "width is", "the width of it is", "wide"])) \
+            + _number(ch, a, "width") + plain(unit)
+        length = plain(rng.choice(["length", "the length is", "length is", "the length of it is", "long"])) \
+            + _number(ch, b, "length") + plain(unit)
+        first, second = (length, width) if form == 10 else (width, length)
+        link = rng.choice(["and", "and", "", ","])
+        return first + ([punct(",")] if link == "," else plain(link)) + second
     if form <= 2:  # one word: "4x8", "4'x8'", "four-by-eight" (tagged width, guidelines 4.7)
         if form == 0:
             word = f"{a}{rng.choice(['x', 'X', 'x', '-by-', 'by'])}{b}"
@@ -186,6 +202,10 @@ class Pieces:
                  "stack": plain(ch.rng.choice(F.STACK_NOUNS))}
         if ref.kind == "id":
             return ch.say(F.TARGET_ID_TERSE if terse else F.TARGET_ID, id=id_phrase(ch, ref.panel_id, "ID_wall", self.read_out_ids), **slots)
+        if ref.kind == "size" and not terse and not ref.length_first and ch.chance(0.05):  # "one of the 4x8s"
+            a, b = ref.size
+            return plain(ch.rng.choice(["one of the", "one of them", "one of the"])) + \
+                tagged(f"{a}{ch.rng.choice(['x', 'X'])}{b}s", "width")
         if ref.kind in ("size", "width", "length"):
             return ch.say(F.TARGET_SIZE_TERSE if terse else F.TARGET_SIZE, size=size_phrase(ch, ref), **slots)
         if ref.kind == "standard":
@@ -277,6 +297,25 @@ def as_plain(phrase: Phrase) -> Phrase:
     return [Token(t.word, "O", "O") if t.is_word else t for t in phrase]
 
 
+def without_end(sentence: Phrase) -> Phrase:
+    """The sentence without its closing punctuation, to go on with it."""
+    out = list(sentence)
+    while out and not out[-1].is_word:
+        out.pop()
+    return out
+
+
+def in_brackets(phrase: Phrase) -> Phrase:
+    """Untagged words in round brackets glued to their first and last word: "(12.5 mm board)"."""
+    out = list(phrase)
+    idx = [i for i, t in enumerate(out) if t.is_word]
+    if idx:
+        first, last = idx[0], idx[-1]
+        out[first] = Token("(" + out[first].word, out[first].tag, out[first].coref)
+        out[last] = Token(out[last].word + ")", out[last].tag, out[last].coref)
+    return out
+
+
 # --- registers: sentence plans ---------------------------------------------------------------------------
 Sentences = list[Phrase]
 
@@ -329,10 +368,36 @@ class Speaker:
     def comma(self) -> Phrase:
         return [punct(",")]
 
+    def colon(self) -> Phrase:
+        return [punct(":")]
+
+    def P_first(self) -> Phrase:
+        """The placement said before the rest ("up top this time"); the default in O words when unsaid."""
+        p = self.P()
+        return self.ch.say(F.PLACEMENT_FIRST, p=p) if p else self.w(F.DEFAULT_FIRST)
+
+    def PD(self) -> Phrase:
+        """The placement wrapped round the stud: "with its edge on the centre line of stud 500105"."""
+        return self.ch.say(F.PLACEMENT_OF_STUD[self.meaning.placement], d=self.D())
+
+    def id_again(self) -> Phrase | None:
+        """The stud's (or else the panel's) id said once more, as typed, for a repetition; None without an id."""
+        stud, target = self.meaning.stud, self.meaning.target
+        if stud.kind == "id":
+            return plain(self.ch.rng.choice(["", "stud", "", "I said"])) + id_phrase(self.ch, stud.stud_id, "ID_stud")
+        if target.kind == "id":
+            return plain(self.ch.rng.choice(["panel", "sheet", "I said", "I said panel"])) + \
+                id_phrase(self.ch, target.panel_id, "ID_wall")
+        return None
+
+    def body(self) -> Sentences:
+        """A plain instruction in a foreman's or a formal frame, for registers that wrap one."""
+        return self.foreman() if self.ch.chance(0.55) else self.formal()
+
     # registers
     def formal(self) -> Sentences:
         ch, T, D, P = self.ch, self.T, self.D, self.P
-        form = ch.rng.randrange(6)
+        form = ch.rng.randrange(9)
         opener = self.w(["", "please", "please", "I would like you to", "I need you to", "next, please"])
         if form == 0:
             return [self.end(opener + self.pick() + T() + plain("and") + self.place() + self.it() + self.prep() + D() + P())]
@@ -345,6 +410,14 @@ class Speaker:
             return out
         if form == 4:
             return [self.end(opener + self.place() + T() + P() + self.prep() + D())]
+        if form == 6:  # the placement wrapped round the stud
+            return [self.end(opener + self.place() + T() + self.PD())]
+        if form == 7:  # the stud first
+            return [self.end(plain(ch.rng.choice(["on", "for", "at", "onto"])) + D() + self.comma()
+                             + self.w(["please", "I would like you to", "kindly", "we need you to"]) + self.place() + T() + P())]
+        if form == 8:
+            return [self.end(T() + plain(ch.rng.choice(["should go", "is to go", "needs to go", "will go"])) + self.prep()
+                             + D() + P())]
         sentences = [self.end(opener + self.pick() + T() + plain("and") + self.place() + self.it() + self.prep() + D())]
         p = self.p.placement_sentence()
         return sentences + ([self.end(p)] if p else [])
@@ -373,7 +446,8 @@ class Speaker:
 
     def foreman(self) -> Sentences:
         ch, T, D, P = self.ch, self.T, self.D, self.P
-        form = ch.rng.randrange(8)
+        rng = ch.rng
+        form = rng.randrange(16)
         if form == 0:
             return [self.end(T() + self.prep() + D() + self.comma() + P())]
         if form == 1:
@@ -391,12 +465,47 @@ class Speaker:
             return [self.end(self.place() + T() + P() + self.prep() + D())]
         if form == 6:
             return [self.end(self.w(F.INTENTS) + self.place() + T() + self.prep() + D() + P() + self.w(F.CLOSERS))]
+        if form == 8:  # the stud first
+            return [self.end(plain(rng.choice(["on", "onto", "for", "at", "over on"])) + D() + self.comma() + self.place()
+                             + T() + P())]
+        if form == 9:  # the stud as the subject
+            return [self.end(D() + plain(rng.choice(["gets", "needs", "takes", "is getting", "wants"])) + T() + P())]
+        if form == 10:  # the target last
+            kind = rng.randrange(3)
+            if kind == 0:
+                return [self.end(plain("what goes on") + D() + plain("is") + T() + self.comma() + P())]
+            if kind == 1:
+                return [self.end(plain("on") + D() + P() + plain(rng.choice(["goes", "we want", "I want"])) + T())]
+            return [self.end(D() + self.comma() + P() + self.comma() + plain("with") + T())]
+        if form == 11:  # a cleft
+            if rng.random() < 0.5:
+                return [self.end(plain("it's") + T() + plain("that goes") + self.prep() + D() + P())]
+            return [self.end(plain("what I want") + self.prep() + D() + plain("is") + T() + P())]
+        if form == 12:  # the placement first
+            return [self.end(self.P_first() + self.colon() + T() + self.prep() + D())]
+        if form == 13:  # an aside between the parts
+            return [self.end(self.pick() + T() + self.comma() + self.w(F.ASIDES) + self.comma() + self.place() + self.it()
+                             + self.prep() + D() + P())]
+        if form == 14:  # the placement wrapped round the stud
+            return [self.end(self.place() + T() + self.PD())]
+        if form == 15:  # asked and answered
+            out = [self.end(T()), self.end(plain(rng.choice(["where", "where to", "on what"])), "?"), self.end(D())]
+            p = P()
+            return out + ([self.end(plain("how"), "?"), self.end(p)] if p else [])
         return [self.end(T() + self.comma() + D() + self.comma() + P() + self.comma() + plain("go"))]
 
     def fragment(self) -> Sentences:
         ch = self.ch
         T, D, P = self.T(True), self.D(True), self.P()
-        form = ch.rng.randrange(6)
+        form = ch.rng.randrange(10)
+        if form == 6 and P:  # the placement first
+            return [self.end(P + self.colon() + T + self.comma() + D)]
+        if form == 7:  # the stud as the key
+            return [self.end(D + self.colon() + T + P)]
+        if form == 8:
+            return [T + plain("/") + D + (plain("/") + P if P else [])]
+        if form == 9:
+            return [self.end(T + plain(ch.rng.choice(["@", "=>", "at"])) + D + P)]
         if form == 0:
             return [self.end(T), self.end(D)] + ([self.end(P)] if P else [])
         if form == 1:
@@ -405,15 +514,28 @@ class Speaker:
             return [self.end(T + self.comma() + D + (self.comma() + P if P else []))]
         if form == 3:
             return [self.end(T + plain(ch.rng.choice(["to", "on", "onto", "at", "->"])) + D + P)]
-        if form == 4:
+        if form in (4, 6):
             return [self.end(D + self.comma() + T + (self.comma() + P if P else []))]
         return [self.end(T + plain("on") + D), self.end(P)] if P else [self.end(T + plain("on") + D)]
 
     def listing(self) -> Sentences:
         ch = self.ch
         T, D, P = self.T(True), self.D(True), self.P()
-        form = int(self.form(["0", "1", "2", "3", "4", "5", "~6"]))
+        form = int(self.form(["0", "1", "2", "3", "4", "5", "7", "8", "9", "10", "~6"]))
         colon = [punct(":")]
+        if form == 7:  # numbered steps
+            out = [self.end(plain("step 1") + colon + self.pick() + T), self.end(plain("step 2") + colon + self.place()
+                                                                              + plain(ch.rng.choice(["on", "to", "at"])) + D)]
+            return out + ([self.end(plain("step 3") + colon + P)] if P else [])
+        if form == 8:  # bullets
+            return [plain("-") + T, plain("-") + D] + ([plain("-") + P] if P else [])
+        if form == 9:
+            out = plain(ch.rng.choice(["panel =", "sheet =", "board ="])) + T + self.comma() + plain("stud =") + D
+            return [out + (self.comma() + plain(ch.rng.choice(["position =", "pos =", "orient ="])) + P if P else [])]
+        if form == 10:
+            out = plain("task") + colon + plain(ch.rng.choice(["hang", "install", "fix"])) + T + plain("|") + \
+                plain("stud") + colon + D
+            return [out + (plain("|") + plain("orientation") + colon + P if P else [])]
         if form == 0:
             out = plain(ch.rng.choice(["panel", "sheet", "board", "what"])) + colon + T + [punct(";")] + \
                 plain(ch.rng.choice(["stud", "where", "location", "dest"])) + colon + D
@@ -445,7 +567,22 @@ class Speaker:
         ch, T, D, P = self.ch, self.T, self.D, self.P
         call = self.w(F.RADIO_CALLS)
         end = self.w(F.RADIO_ENDS)
-        form = int(self.form(["0", "1", "2", "4", "~3"]))
+        form = int(self.form(["0", "1", "2", "4", "5", "6", "7", "~3"]))
+        if form == 5:  # "message follows", the parts split by "break"
+            return [self.end(self.w(F.CALL_SIGNS) + self.comma() + plain("message follows")),
+                    self.end(T() + self.comma() + plain("break") + self.comma() + D() + P()), self.end(end)]
+        if form == 6:  # "I say again": the id repeated
+            again = self.id_again()
+            if again is not None:
+                if self.meaning.stud.kind == "id":
+                    return [self.end(T() + self.prep() + D() + self.comma() + plain("I say again") + self.comma()
+                                     + again + P() + self.comma() + end)]
+                return [self.end(T() + self.comma() + plain("I say again") + self.comma() + again + self.prep() + D()
+                                 + P() + self.comma() + end)]
+            form = 0
+        if form == 7:
+            return [self.end(call), self.end(plain(ch.rng.choice(["next task", "task"])) + self.colon() + T() + self.prep()
+                                             + D() + P()), self.end(end)]
         if form == 0:
             return [self.end(call + self.comma() + T() + self.prep() + D() + P() + self.comma() + end)]
         if form == 4:
@@ -460,7 +597,28 @@ class Speaker:
 
     def non_native(self) -> Sentences:
         ch, T, D, P = self.ch, self.T, self.D, self.P
-        form = ch.rng.randrange(6)
+        rng = ch.rng
+        form = rng.randrange(14)
+        nn = lambda: self.w(F.NN_PREPOSITIONS)  # noqa: E731
+        if form == 6:
+            return [self.end(T() + plain(rng.choice(["you must to put", "you must put", "you need put"])) + nn() + D() + P())]
+        if form == 7:
+            return [self.end(plain("for") + D() + plain(rng.choice(["you take", "you are take", "take"])) + T() + P())]
+        if form == 8:
+            return [self.end(plain(rng.choice(["is need", "need", "is necessary"])) + T() + nn() + D() + P())]
+        if form == 9:
+            return [self.end(plain("take") + T() + self.comma() + plain(rng.choice(["after put", "after you put", "then is put"]))
+                             + nn() + D() + self.comma() + plain("position") + (P() or self.w(F.ENG_DEFAULT_PLACEMENT)))]
+        if form == 10:
+            return [self.end(plain("you are taking") + T() + plain("and putting") + nn() + D() + P())]
+        if form == 11:  # the verb last
+            return [self.end(plain(rng.choice(["now", "so", "next"])) + T() + nn() + D() + P()
+                             + plain(rng.choice(["you put", "you install", "you are put"])))]
+        if form == 12:
+            return [self.end(plain(rng.choice(["please make install", "please do install", "please to make"])) + T() + nn()
+                             + D() + P())]
+        if form == 13:
+            return [self.end(D() + plain(rng.choice(["is the place for", "is place for", "is for"])) + T() + P())]
         if form == 0:
             return [self.end(plain("you") + self.pick() + T() + plain("and") + self.place() + plain("on") + D() + P())]
         if form == 1:
@@ -481,11 +639,53 @@ class Speaker:
         fix = self.w(F.CORRECTIONS)
         tail = self.w(F.CORRECTION_ENDS)
         which = rng.choice(["target", "stud", "placement"]) if self.meaning.target.kind != "none" else "stud"
+        if which == "stud" and self.meaning.stud.kind == "none":
+            which = "placement"
+        style = rng.randrange(5)
+        if style == 1:  # a whole sentence taken back, then said again right
+            T, D, P = self.T(), self.D(), self.P()
+            if which == "target":
+                T = self.p.target(ch.chance(0.4), abandoned_target(rng, self.ep, self.meaning))
+            elif which == "stud":
+                D = self.p.stud(ch.chance(0.4), abandoned_stud(rng, self.meaning))
+            else:
+                others = [p for p in F.PLACEMENT if p != self.meaning.placement and p != "vertical_left"]
+                P = self.p.placement(rng.choice(others))
+            wrong = as_plain(self.place() + T + self.prep() + D + P)
+            return [self.end(wrong), self.end(self.w(F.CORRECTION_SENTENCES) + self.colon() + self.place() + self.T()
+                                              + self.prep() + self.D() + self.P())]
+        if style == 2:  # a negated alternative: "on 500105, not 500104"
+            if which == "target":
+                wrong = as_plain(self.p.target(ch.chance(0.4), abandoned_target(rng, self.ep, self.meaning)))
+                if ch.chance(0.5):
+                    return [self.end(self.place() + self.T() + self.comma() + plain("not") + wrong + self.comma()
+                                     + self.prep() + self.D() + self.P())]
+                return [self.end(plain("not") + wrong + self.comma() + self.T() + self.comma() + self.prep() + self.D()
+                                 + self.P())]
+            if which == "stud":
+                wrong = as_plain(self.p.stud(ch.chance(0.4), abandoned_stud(rng, self.meaning)))
+                return [self.end(self.place() + self.T() + self.prep() + self.D() + self.comma() + plain("not") + wrong
+                                 + self.P())]
+            others = [p for p in F.PLACEMENT if p != self.meaning.placement and p != "vertical_left"]
+            wrong = as_plain(self.p.placement(rng.choice(others)))
+            right = self.P() or plain(rng.choice(["standing up", "upright", "vertical"]))
+            return [self.end(self.place() + self.T() + self.prep() + self.D() + right + self.comma() + plain("not") + wrong)]
+        if style == 3 and which in ("target", "stud"):  # "did I say X? I meant Y."
+            if which == "stud":
+                wrong = as_plain(self.p.stud(True, abandoned_stud(rng, self.meaning)))
+                first = self.place() + self.T() + self.prep() + wrong + self.P()
+                right = self.D()
+            else:
+                wrong = as_plain(self.p.target(True, abandoned_target(rng, self.ep, self.meaning)))
+                first = self.place() + wrong + self.prep() + self.D() + self.P()
+                right = self.T()
+            return [self.end(first), self.end(self.w(F.CORRECTION_ASKS) + wrong, "?"),
+                    self.end(self.w(F.CORRECTION_MEANT) + right)]
         if which == "target":
             wrong = as_plain(self.p.target(ch.chance(0.4), abandoned_target(rng, self.ep, self.meaning)))
             return [self.end(self.place() + wrong + self.comma() + fix + self.comma() + self.T() + tail + self.prep()
                              + self.D() + self.P())]
-        if which == "stud" and self.meaning.stud.kind != "none":
+        if which == "stud":
             wrong = as_plain(self.p.stud(ch.chance(0.4), abandoned_stud(rng, self.meaning)))
             return [self.end(self.place() + self.T() + self.prep() + wrong + self.comma() + fix + self.comma()
                              + self.D() + tail + self.P())]
@@ -508,7 +708,18 @@ class Speaker:
 
     def question(self) -> Sentences:
         ch, T, D, P = self.ch, self.T, self.D, self.P
-        form = ch.rng.randrange(4)
+        form = ch.rng.randrange(8)
+        if form == 4:  # asked and answered
+            return [self.end(plain(ch.rng.choice(["where does", "where should", "where's"])) + T()
+                             + plain(ch.rng.choice(["go", "go", "going"])), "?"), self.end(D() + P())]
+        if form == 5:
+            return [self.end(plain(ch.rng.choice(["you see", "see", "got", "found"])) + T(), "?"),
+                    self.end(self.place() + self.it() + self.prep() + D() + P())]
+        if form == 6:  # a question tag
+            return [self.end(T() + self.prep() + D() + P() + self.comma() + self.w(F.QUESTION_TAGS), "?")]
+        if form == 7:
+            return [self.end(plain(ch.rng.choice(["can we get", "could we have", "can I get"])) + T() + self.prep() + D()
+                             + P(), "?")]
         if form == 0:
             return [self.end(self.w(F.QUESTION_OPENERS) + self.place() + T() + self.prep() + D() + P(), "?")]
         if form == 1:
@@ -518,8 +729,134 @@ class Speaker:
         return [self.end(plain("what if we") + self.place() + T() + self.prep() + D() + P(), "?")]
 
     def texting(self) -> Sentences:
-        """A phone message: a fragment or a foreman's line; ``render`` abbreviates it (``texting_forms``)."""
-        return self.fragment() if self.ch.chance(0.5) else self.foreman()
+        """A phone message: a fragment, a foreman's line or an apprentice checking; ``render`` abbreviates it
+        (``texting_forms``)."""
+        ch = self.ch
+        r = ch.rng.random()
+        if r < 0.4:
+            out = self.fragment()
+        elif r < 0.75:
+            out = self.foreman()
+        else:  # an apprentice checking what to do
+            T, D, P = self.T(True), self.D(True), self.P()
+            frame = ch.rng.randrange(4)
+            if frame == 0:
+                out = [self.end(plain("so") + T + plain("on") + D + P, "?")]
+            elif frame == 1:
+                out = [self.end(plain("u want") + T + plain(ch.rng.choice(["on", "to", "at"])) + D + P, "?")]
+            elif frame == 2:
+                out = [self.end(plain("ok") + T + plain("to") + D + P + plain("then"))]
+            else:
+                out = [self.end(plain("u do") + T + plain("on") + D + P + plain("next k"))]
+        out = [self.w(F.TEXT_OPENERS) + out[0]] + out[1:]
+        core = without_end(out[-1])  # the message's last words go before its closing mark: "... asap?"
+        return out[:-1] + [core + self.w(F.TEXT_ENDS) + out[-1][len(core):]]
+
+    def explain(self) -> Sentences:
+        """Someone explaining: a reason after the instruction, a lesson for an apprentice, a purpose first, a story
+        of what happened before, a reason in the middle, a long sentence with clauses around it. Only the
+        instruction's own words carry tags."""
+        ch, T, D, P = self.ch, self.T, self.D, self.P
+        rng = ch.rng
+        form = int(self.form(["0", "1", "2", "3", "4", "5", "~6"]))
+        if form == 0:  # a reason after
+            body = self.body()
+            reason = self.w(F.REASON_LINKS) + self.w(F.REASONS_AFTER)
+            if ch.chance(0.5):
+                return body[:-1] + [self.end(without_end(body[-1]) + self.comma() + reason)]
+            return body + [self.end(reason)]
+        if form == 1:  # teaching an apprentice
+            out = [self.end(self.w(F.TEACH_OPENERS))]
+            if ch.chance(0.5):
+                out.append(self.end(plain("first you") + self.pick() + T() + self.comma()
+                                    + plain(rng.choice(["then you", "and then you", "then"])) + self.place() + self.it()
+                                    + self.prep() + D() + P()))
+            else:
+                out += [self.end(plain("you take") + T()), self.end(plain("you line it up") + self.prep() + D() + P()),
+                        self.end(plain(rng.choice(["and you screw it off", "then you screw it", "done"])))]
+            return out + ([self.end(self.w(F.TEACH_TIPS))] if ch.chance(0.7) else [])
+        if form == 2:  # a purpose first
+            return [self.end(self.w(F.PURPOSES) + self.comma() + self.place() + T() + self.prep() + D() + P())]
+        if form == 3:  # a story of what happened before
+            last = self.ep.last
+            if last is not None and ch.chance(0.4):
+                story = ch.say(F.STORIES_LAST, panel=plain(last["drywall_id"]), stud=plain(last["stud_id"]))
+            else:
+                story = self.w(F.STORIES)
+            body = self.body()
+            return [self.end(story), self.w(F.STORY_LINKS) + body[0]] + body[1:]
+        if form == 4:  # a reason in the middle
+            return [self.end(self.pick() + T() + self.comma() + self.w(F.REASONS_AFTER) + self.comma()
+                             + plain(rng.choice(["so", "so", "and"])) + self.place() + self.it() + self.prep() + D() + P())]
+        if form == 5:  # a long sentence: clauses before and after
+            return [self.end(self.w(F.LEAD_CLAUSES) + self.comma() + self.place() + T() + self.prep() + D() + P()
+                             + self.comma() + self.w(F.TRAIL_CLAUSES))]
+        body = self.body()  # a note left for the next shift (held back: the novel split only)
+        tip = [self.end(self.w(F.TEACH_TIPS))] if ch.chance(0.4) else []
+        return [self.w(F.HANDOVER) + self.colon() + body[0]] + body[1:] + tip
+
+    def boss(self) -> Sentences:
+        """An impatient boss: barked pieces, exclamations, "why isn't it up yet?", a repeated id."""
+        ch, rng = self.ch, self.ch.rng
+        opener, end = self.w(F.BOSS_OPENERS), self.w(F.BOSS_ENDS)
+        form = rng.randrange(6)
+        if form == 3:  # a repetition: "... 500105. Stud 500105!"
+            again = self.id_again()
+            if again is not None:
+                return [self.end(opener, "!"), self.end(self.place() + self.T() + self.prep() + self.D() + self.P()),
+                        self.end(again, "!")]
+            form = 4
+        if form == 0:  # barked pieces
+            T, D, P = self.T(True), self.D(True), self.P()
+            return [self.end(opener, "!"), self.end(T, "!"), self.end(D, "!")] + ([self.end(P, "!")] if P else []) \
+                + [self.end(end, "!")]
+        if form == 1:
+            return [self.end(opener + self.comma() + self.pick() + self.T() + plain("and get it") + self.prep() + self.D()
+                             + self.P() + self.comma() + end, "!")]
+        if form == 2:  # why isn't it done yet
+            frame = rng.choice(["why is {t} not on {d} yet", "why isn't {t} on {d} yet", "{t} should be on {d} by now",
+                                "I wanted {t} on {d} ten minutes ago"])
+            out = [self.end(parse(frame, t=self.T(), d=self.D()), "?" if frame.startswith("why") else "!")]
+            p = self.P()
+            return out + [self.end((p + self.comma() if p else []) + end, "!")]
+        if form == 4:
+            return [self.end(opener, "!"), self.end(self.T() + self.prep() + self.D() + self.P() + self.comma() + end, "!")]
+        return [self.end(plain(rng.choice(["I told you already", "I said it once", "listen"])) + self.comma() + self.T()
+                         + plain("goes") + self.prep() + self.D() + self.P(), "!")]
+
+    def engineer(self) -> Sentences:
+        """A site engineer writing formally, with technical detail (thicknesses, screw spacing, drawing
+        references) whose numbers carry no tag."""
+        ch, rng = self.ch, self.ch.rng
+        opener = parse(ch.template(F.ENG_OPENERS).replace("{k}", str(rng.randint(1, 40)))
+                       .replace("{m}", str(rng.randint(41, 60))))
+        detail = self.w(F.ENG_DETAILS)
+        P = self.P()
+        orient = P or self.w(F.ENG_DEFAULT_PLACEMENT)
+        key = self.w(F.ENG_PLACEMENT_KEYS)
+        colon = self.colon()
+        form = rng.randrange(6)
+        if form == 0:
+            return [self.end(opener + colon + self.T() + plain(rng.choice(["to be installed at", "to be fixed to",
+                                                                            "to be mounted on", "shall be installed on"]))
+                             + self.D() + (self.comma() + P if P else [])), self.end(detail)]
+        if form == 1:
+            return [self.end(plain(rng.choice(["the next panel to be fixed is", "next panel", "panel to install"])) + self.T()),
+                    self.end(plain(rng.choice(["location", "stud", "fixing location"])) + colon + self.D()),
+                    self.end(key + colon + orient), self.end(detail)]
+        if form == 2:
+            return [self.end(plain(rng.choice(["install", "fix", "mount", "erect"])) + self.T()
+                             + plain(rng.choice(["at", "to", "on"])) + self.D() + self.comma() + orient + [punct(";")] + detail)]
+        if form == 3:
+            return [self.end(plain(rng.choice(["it is requested that", "kindly ensure that", "please arrange that"]))
+                             + self.T() + plain("be fixed to") + self.D() + P), self.end(detail)]
+        if form == 4:
+            return [self.end(opener + colon + self.T() + in_brackets(detail) + self.comma() + plain("to") + self.D()
+                             + self.comma() + orient)]
+        ref = plain(rng.choice(["the layout drawing", "drawing A-201", "the method statement", "the wall schedule",
+                                "the coordination meeting"]))
+        return [self.end(plain("with reference to") + ref + self.comma() + self.T() + plain("is to be installed on")
+                         + self.D() + self.comma() + key + orient + [punct(";")] + detail)]
 
     def sentences(self) -> Sentences:
         register = self.register
@@ -527,7 +864,7 @@ class Speaker:
             "formal": self.formal, "polite": self.polite, "foreman": self.foreman, "fragment": self.fragment,
             "list": self.listing, "speech": self.speech, "radio": self.radio, "non_native": self.non_native,
             "correction": self.correction, "context": self.context, "question": self.question,
-            "texting": self.texting,
+            "texting": self.texting, "explain": self.explain, "boss": self.boss, "engineer": self.engineer,
         }[register]
         return [s for s in maker() if any(t.is_word for t in s)]
 
@@ -535,7 +872,7 @@ class Speaker:
 # --- rendering and noise ------------------------------------------------------------------------------
 #: Words that a hurried worker or a speech recogniser drops; never tagged, never a correction marker.
 DROPPABLE = frozenset({"the", "a", "an", "it", "please", "and", "that", "is", "for", "then", "now", "up"})
-CASING = {"typed": 0.55, "lower": 0.35, "upper": 0.04, "no_first_capital": 0.06}
+CASING = {"typed": 0.53, "lower": 0.34, "upper": 0.04, "no_first_capital": 0.06, "title": 0.03}
 
 
 def _typo(rng: random.Random, word: str) -> str:
@@ -602,9 +939,11 @@ def texting_forms(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
-def render(ch: Chooser, sentences: Sentences, spoken: bool) -> tuple[str, list[str], list[str], list[str]]:
-    """Text, words, tags and co-reference tags; casing and punctuation as typed, lost, or shouted."""
-    casing = "lower" if spoken else G._weighted(ch.rng, CASING)
+def render(ch: Chooser, sentences: Sentences, spoken: bool,
+           shout: bool = False) -> tuple[str, list[str], list[str], list[str]]:
+    """Text, words, tags and co-reference tags; casing and punctuation as typed, lost, shouted (more often when
+    ``shout``: an impatient boss) or in Title Case (a checklist, a formal note)."""
+    casing = "lower" if spoken else ("upper" if shout and ch.chance(0.3) else G._weighted(ch.rng, CASING))
     keep_punctuation = not spoken and ch.rng.random() < 0.85
     pieces: list[str] = []
     words: list[str] = []
@@ -622,7 +961,7 @@ def render(ch: Chooser, sentences: Sentences, spoken: bool) -> tuple[str, list[s
                 w = w.lower()
             elif casing == "upper":
                 w = w.upper()
-            elif first and casing == "typed":
+            elif (first and casing == "typed") or casing == "title":
                 w = w[0].upper() + w[1:]
             first = False
             clean = tokenize(w)
@@ -651,12 +990,13 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
             if meaning is None:
                 break
             register = G._weighted(rng, REGISTERS)
-            spoken = register in ("speech", "texting") or (register in ("radio", "correction") and rng.random() < 0.5)
+            spoken = register in ("speech", "texting") or (register in ("radio", "correction") and rng.random() < 0.5) \
+                or (register in ("explain", "boss") and rng.random() < 0.3)
             sentences = Speaker(ch, meaning, ep, register).sentences()
             sentences = add_noise(ch, sentences, spoken)
             if register == "texting":
                 sentences = texting_forms(ch, sentences)
-            said = render(ch, sentences, spoken)
+            said = render(ch, sentences, spoken, shout=register == "boss")
             if not said[1]:
                 continue
             rows.append(G.corpus_row(f"field-{split}-{len(rows):05d}", said, len(sentences),

@@ -26,6 +26,8 @@ HELD_BACK: dict[str, str] = {
     "sign-off radio frames": "radio calls with a call sign and 'over and out' / 'how copy'",
     "member nouns": "'framing member', 'upright' for the stud",
     "hedge-after frames": "an instruction followed by a hedge ('..., if that works for you?')",
+    "plate rows": "'top plate' / 'bottom plate' for a horizontal row ('tight to the top plate')",
+    "handover notes": "an instruction left as a note for the next shift ('note for the next shift: ...')",
 }
 
 # --- generic words -----------------------------------------------------------------------------------
@@ -33,7 +35,8 @@ HELD_BACK: dict[str, str] = {
 PANEL_NOUNS = [
     "sheet/@T", "sheet/@T", "sheet/@T", "panel/@T", "panel/@T", "board/@T", "board/@T", "drywall/@T",
     "piece/@T", "drywall/@T sheet/@T", "one/@T", "one/@T", "drywall/@T board/@T", "plasterboard/@T",
-    "rock/@T", "sheetrock/@T", "~gyp/@T board/@T", "~wallboard/@T", "~GWB/@T",
+    "rock/@T", "sheetrock/@T", "sheet/@T of/@T rock/@T", "piece/@T of/@T rock/@T",
+    "~gyp/@T board/@T", "~wallboard/@T", "~GWB/@T",
 ]
 #: The panel before its id ("sheet 500320"): the nouns without "one".
 ID_NOUNS = [n for n in PANEL_NOUNS if not n.startswith("one/")]
@@ -53,7 +56,9 @@ OPENERS = ["", "", "", "", "okay", "ok", "alright", "right", "so", "next", "now"
            "next up", "alright next one", "right then", "yo", "hey", "hey robot", "robot", "listen", "good",
            "nice", "cool", "perfect"]
 CLOSERS = ["", "", "", "", "", "thanks", "thank you", "cheers", "please", "pls", "thx", "ta", "when you can",
-           "nice and easy", "carefully", "good", "go", "for me", "mate", "buddy", "boss", "pal", "chief"]
+           "nice and easy", "carefully", "good", "go", "for me", "mate", "buddy", "boss", "pal", "chief",
+           # time words after a position: "right" here is not a side ("... third to the right, right now")
+           "right now", "right away", "right now please", "right after this", "straight away"]
 #: Ways of saying "do this" that carry no information ("let's", "you're gonna", "what I want is").
 INTENTS = ["let's", "you're gonna", "you gonna", "we need to", "I want you to", "gonna have to", "next we", "we'll",
            "what I want is", "ok so for this one", "the plan is to", "time to", "go ahead and", "you can"]
@@ -81,15 +86,107 @@ CORRECTIONS = ["no", "no wait", "wait", "sorry", "actually", "actually no", "no 
                "my bad", "correction", "not that", "or no", "hang on", "scratch that", "I mean", "wait no",
                "~make that", "~let me rephrase", "~rather"]
 CORRECTION_ENDS = ["", "", "instead", "not the other one", "sorry", "my mistake", "I meant", "I mean that"]
+#: A sentence that takes back the whole sentence before it ("... Correction: ...").
+CORRECTION_SENTENCES = ["correction", "sorry , I mean", "scratch that", "no wait", "let me say that again", "my bad",
+                        "wrong one", "no no no", "hold on , I got that wrong", "disregard that", "strike that",
+                        "ignore that"]
+#: "Did I say X? I meant Y."
+CORRECTION_ASKS = ["did I say", "wait , did I say", "I said", "oops , I said"]
+CORRECTION_MEANT = ["I meant", "sorry , I meant", "I mean", "should be", "it's", "meant to say"]
 RADIO_CALLS = ["copy", "roger", "roger that", "copy that", "ten four", "10-4", "affirmative", "go ahead",
-               "robot, copy", "come in robot", "over", "read you"]
-RADIO_ENDS = ["over", "over", "over", "copy", "copy?", "confirm", "how copy", "roger", "out"]
+               "robot, copy", "come in robot", "over", "read you", "message follows", "next task", "stand by for task",
+               "radio check , loud and clear"]
+RADIO_ENDS = ["over", "over", "over", "copy", "copy?", "confirm", "how copy", "roger", "out", "acknowledge",
+              "read back , over", "how do you read", "over to you"]
 CALL_SIGNS = ["base to robot", "crew two to robot", "robot , this is crew one", "crew one here",
               "~robot one , this is the foreman", "~drywall crew to robot one", "~this is station two"]
 QUESTION_OPENERS = ["can you", "could you", "would you", "can you please", "will you", "could you maybe",
                     "you wanna", "mind if you", "any chance you could", "how about you", "why don't you"]
 HEDGES = ["I think", "I guess", "maybe", "probably", "if possible", "I believe", "if that's okay",
           "if you don't mind", "I'd say", "let's say", "perhaps"]
+#: Asides between the parts of one instruction: they carry nothing.
+ASIDES = ["you see it", "got it", "yeah", "careful it's heavy", "mind your fingers", "nice and square", "you with me",
+          "okay", "right", "watch the corner", "take your time", "good", "no rush", "easy does it", "that's the one",
+          "two hands on it", "don't drop it", "keep it flat", "yeah that one"]
+#: Reasons said after the instruction ("..., because the bottom course is done"); position words here are O.
+REASONS_AFTER = [
+    "the bottom course is done", "the joints don't line up that way", "that keeps the seams staggered",
+    "the tapers are coming after lunch", "we need this wall closed up today", "the inspector wants it done by three",
+    "it has to be up before the electrician comes back", "the left side is finished", "we start taping tomorrow",
+    "the framing there got checked", "that's how the drawing has it", "the butt joints have to land on a stud",
+    "the top row on the other wall is done", "the mud guys want the long seams flat", "we're running out of daylight",
+    "the boss changed the plan", "that stud is the straight one", "there's backing behind it",
+]
+REASON_LINKS = ["because", "because", "since", "cause", "so that", "as", "that's because", "reason is"]
+#: Purposes said before the instruction ("To keep the joints staggered, ...").
+PURPOSES = ["to keep the joints staggered", "so the tapers have an easy time", "to close this bay up",
+            "so we finish before lunch", "to get the long seams flat", "so the butt joints land on a stud",
+            "to keep the crew busy", "for the inspection", "to stay ahead of the tapers", "so the wall is ready for mud"]
+#: A teacher's opening and tips for an apprentice: no information.
+TEACH_OPENERS = ["watch how we do this", "okay , listen up", "here's how it goes", "let me show you", "pay attention",
+                 "this is how we do it", "first time doing this ? easy", "rookie , listen", "look", "remember this",
+                 "you'll do this a hundred times , so watch"]
+TEACH_TIPS = [
+    "always screw it off from the middle out", "keep the factory edge out", "check it's plumb before you screw it",
+    "stagger the butt joints", "don't let the seams line up with the door", "screws about a foot apart",
+    "don't break the paper with the screws", "keep it tight to the one next to it", "the tapered edges meet , see",
+    "push it up tight before you screw it", "that's the whole trick", "the mud guys will thank you",
+    "measure twice , cut once", "that's how you learn", "next time you do it yourself",
+]
+#: What happened before, told before the instruction; position and back-reference words here are O.
+STORIES = [
+    "yesterday we finished the other wall", "last week we had to pull two sheets off because the joints lined up",
+    "this morning the framer fixed the crooked stud", "when I started we had four guys on one wall",
+    "the last crew left this wall half done", "we had a sheet crack on us earlier",
+    "the inspector came by and said the wall looks good", "on the last job we did every wall sideways",
+    "the delivery came late so we lost an hour", "before lunch we did the bottom on the other side",
+    "the taper complained about the seams on the east wall", "we got the layout from the engineer today",
+    "the foreman checked the first few and they were fine", "somebody put a screw through a pipe last month",
+]
+#: A story about the last accepted step, with its ids ({panel}, {stud}: all O).
+STORIES_LAST = ["you put {panel} on {stud} before and it looks good", "{panel} went on {stud} , nice job",
+                "the last one , {panel} , went on {stud}", "good , {panel} is on {stud} now",
+                "we just did {panel} on {stud}"]
+STORY_LINKS = ["so now", "anyway", "so this time", "today", "now", "right , so", "okay so", "so", "next"]
+#: An impatient boss.
+BOSS_OPENERS = ["come on", "hurry up", "let's go", "move it", "what are you waiting for", "are you deaf",
+                "how many times do I have to say it", "not tomorrow , today", "wake up", "stop standing around",
+                "I haven't got all day", "for the last time", "quick", "listen to me"]
+BOSS_ENDS = ["now", "right now", "today", "move", "quick", "come on", "hurry", "let's go", "and make it quick",
+             "before lunch", "chop chop", "I'm waiting", "go go go", "no more mistakes"]
+#: A site engineer's openers and technical details: numbers and references that carry no tag.
+ENG_OPENERS = ["please proceed as follows", "next activity", "work instruction", "installation sequence , next item",
+               "as per the layout drawing", "per drawing A-201", "in accordance with the method statement",
+               "as discussed at the coordination meeting", "for the record", "task {k}", "item {k} of {m}",
+               "ref. RFI {k}", "level 2 , gridline C", "zone B , wall W{k}"]
+ENG_DETAILS = [
+    "12.5 mm board", "half inch board", "fix with 25 mm drywall screws at 300 mm centres", "screws at 12 inch spacing",
+    "tolerance 3 mm", "check plumb and line before fixing", "leave a 10 mm expansion gap", "fire rating 60 minutes",
+    "fixings to manufacturer's specification", "joints to be staggered", "paper face out", "no cut edges at openings",
+    "moisture resistant board not required", "screw heads to be set just below the paper", "2 fixings per metre minimum",
+    "record completion in the site diary",
+]
+ENG_DEFAULT_PLACEMENT = ["vertical", "vertical , edge on the left line of the stud", "portrait", "vertical , default",
+                         "vertical , left edge on stud line", "vertical as usual"]
+#: The words of an engineer's placement line when a placement is said.
+ENG_PLACEMENT_KEYS = ["orientation", "position", "placement", "fixing position", "mounting"]
+#: An instruction left for the next shift (held back: the novel split only).
+HANDOVER = ["~note for the next shift", "~handover note", "~for the morning shift , first job",
+            "~for whoever is on tomorrow", "~handover to the night shift"]
+#: Clauses before and after an instruction in a long explanatory sentence: no information.
+LEAD_CLAUSES = ["once you're done with the screws on that one", "when the lift is free", "after you've checked the stud is straight",
+                "as soon as the tapers are out of the way", "before you break for lunch", "when you've got a second",
+                "if the glue is on already", "while I get the screws"]
+TRAIL_CLAUSES = ["and make sure it sits tight against its neighbour", "and check it's plumb before you screw it off",
+                 "then give me a shout", "and don't forget the screws along the edge", "and let me know when it's up",
+                 "and mind the outlet box", "then we break"]
+#: Question tags after an instruction ("..., yeah?").
+QUESTION_TAGS = ["yeah", "okay", "right", "got it", "alright", "you good", "can do", "understood", "sound good"]
+#: Phone-message openers and ends (an apprentice texting).
+TEXT_OPENERS = ["", "", "hey", "yo", "k so", "ok", "boss says", "next one", "fyi", "so", "hi"]
+TEXT_ENDS = ["", "", "thx", "ty", "asap", "k?", "pls", "cheers", "when u can", "ta"]
+#: Prepositions a non-native speaker uses before the stud.
+NN_PREPOSITIONS = ["in", "at", "to", "into", "by", "for", "on", "in", "at"]
 
 # --- the target panel --------------------------------------------------------------------------------
 #: {id} is the tagged id (ID_wall), {noun} a panel noun.
@@ -128,9 +225,14 @@ TARGET_SAME = [
     "another/dim {noun} the same/dim", "the same/dim as the one before/dim", "a matching/dim {noun}",
     "from the {stack} the last/dim one came/dim from", "from the same/dim {stack} as last/dim time/dim",
     "same/dim again/dim", "ditto/dim",
+    "another/dim of the same/dim", "the same/dim as you just/dim did/dim", "same/dim thing again/dim",
+    "same/dim deal as last/dim time/dim", "the same/dim sort as before/dim", "another/dim one just like it",
+    "the same/dim size you just/dim used/dim", "same/dim as that last/dim one", "the same/dim as earlier/dim",
+    "off the same/dim {stack} again/dim", "from the {stack} you took the last/dim one from",
 ]
 TARGET_SAME_TERSE = ["same/dim again/dim", "same/dim as last/dim", "same/dim size", "another/dim", "same/dim {noun}",
-                     "ditto/dim", "same/dim as before/dim", "like last/dim time/dim"]
+                     "ditto/dim", "same/dim as before/dim", "like last/dim time/dim", "another/dim of those/dim",
+                     "same/dim thing"]
 #: A stack named by where it is: {where} is one of STACK_WHERE[stack].
 TARGET_STACK = [
     "the {noun} from the {where}", "a {noun} off the {where}", "the {noun} {where}", "one from the {where}",
@@ -175,6 +277,8 @@ PANEL_ANCHOR_PREVIOUS = [
     "where the last/Dw_loc2 one came from", "the {stack} you used last/Dw_loc2", "the last/Dw_loc2 {plainnoun}",
     "the one before/Dw_loc2", "the previous/Dw_loc2 {plainnoun}", "the one you just/Dw_loc2 used/Dw_loc2",
     "the {stack} from last/Dw_loc2 time/Dw_loc2",
+    "the {stack} the last/Dw_loc2 one came/Dw_loc2 from", "the {stack} you just/Dw_loc2 took/Dw_loc2 from",
+    "the one you took last/Dw_loc2",
 ]
 #: No target said (refused as undetermined).
 TARGET_NONE = ["a {noun}", "the {noun}", "one", "a {noun}", "the next {noun}", "any {noun}", "whatever {noun}",
@@ -242,6 +346,7 @@ STUD_ANCHOR_PREVIOUS = [
     "the stud you just/St_loc2 used/St_loc2", "last/St_loc2 time/St_loc2", "the one before/St_loc2",
     "where you put the last/St_loc2 one", "the last/St_loc2 stud you used", "the previous/St_loc2 one",
     "that last/St_loc2 one", "where the previous/St_loc2 one went", "the stud from last/St_loc2 time/St_loc2",
+    "where that last/St_loc2 one went", "the stud you just/St_loc2 did/St_loc2", "the last/St_loc2 one you did",
 ]
 #: The stud of the last accepted command (St_loc1 "same" or "where" + St_loc2, guidelines 4.7).
 STUD_SAME = [
@@ -250,8 +355,13 @@ STUD_SAME = [
     "same/St_loc1 {stud} as before/St_loc2", "the same/St_loc1 {stud} you just/St_loc2 used/St_loc2",
     "where/St_loc1 the last/St_loc2 one went", "where/St_loc1 you put the last/St_loc2 one",
     "the same/St_loc1 {stud} as the previous/St_loc2 one", "right where/St_loc1 the last/St_loc2 one went",
+    "the same/St_loc1 spot", "the same/St_loc1 spot as before/St_loc2", "where/St_loc1 that one went",
+    "exactly where/St_loc1 the previous/St_loc2 one went", "where/St_loc1 you did the last/St_loc2 one",
+    "the same/St_loc1 place again/St_loc2", "the same/St_loc1 {stud} as that one", "same/St_loc1 place as last/St_loc2 time/St_loc2",
 ]
-STUD_SAME_TERSE = ["same/St_loc1 {stud}", "same/St_loc1 {stud}", "same/St_loc1 one", "same/St_loc1 again/St_loc2"]
+STUD_SAME_TERSE = ["same/St_loc1 {stud}", "same/St_loc1 {stud}", "same/St_loc1 one", "same/St_loc1 again/St_loc2",
+                   "same/St_loc1 spot", "same/St_loc1 place", "where/St_loc1 that one went", "same/St_loc1 as before/St_loc2",
+                   "same/St_loc1 {stud} as before/St_loc2"]
 #: No stud said (refused as undetermined).
 STUD_NONE = ["the wall", "a stud", "the stud", "up there", "the frame", "somewhere", "that stud", "the next stud",
              "wherever", "over there"]
@@ -262,6 +372,7 @@ PLACEMENT = {
         "", "", "", "", "", "", "", "", "", "standing up", "upright", "vertical", "vertically", "straight up",
         "on its edge", "plumb", "the usual way", "edge on the left side of the {stud}", "long way up",
         "standing", "up and down", "portrait", "portrait style", "stood up", "on the stud's left edge",
+        "stood up on its end", "standing up like always", "left edge on the {stud}", "edge on the left of the {stud}",
     ],
     "vertical_middle": [
         "on the centre/Vr_md line/Vr_md", "on the center/Vr_md line/Vr_md", "on/Vr_md centre/Vr_md", "on/Vr_md center/Vr_md",
@@ -273,6 +384,9 @@ PLACEMENT = {
         "in the middle/Vr_md of the {stud}", "lined up on the centre/Vr_md line/Vr_md", "vertical on/Vr_md centre/Vr_md",
         "upright on the center/Vr_md line/Vr_md", "edge on c-l/Vr_md", "on the mid/Vr_md line/Vr_md",
         "portrait on the centre/Vr_md line/Vr_md", "with the edge in the middle/Vr_md of the {stud}",
+        "centre/Vr_md of the {stud}", "to the centre/Vr_md line/Vr_md", "edge to centre/Vr_md", "edge on centre/Vr_md",
+        "leave half/Vr_md the {stud} for the next one", "centered/Vr_md up on the {stud}", "middle/Vr_md of the {stud}",
+        "on the centre/Vr_md", "centre/Vr_md line/Vr_md please", "stood up on the centre/Vr_md line/Vr_md",
     ],
     "horizontal_top": [
         "up top/Hr_top", "in the top/Hr_top row/Hr_top", "across the top/Hr_top", "top/Hr_top row/Hr_top",
@@ -283,7 +397,11 @@ PLACEMENT = {
         "tight to the ceiling/Hr_top", "up against the ceiling/Hr_top", "landscape at the top/Hr_top",
         "landscape up top/Hr_top", "lying down at the top/Hr_top",
         "in the top/Hr_top course/Hr_top", "top/Hr_top course/Hr_top", "the upper/Hr_top course/Hr_top",
+        "up at the top/Hr_top", "laid flat up top/Hr_top", "top/Hr_top position", "upper/Hr_top position",
+        "high/Hr_top row/Hr_top", "at the ceiling/Hr_top", "the high/Hr_top course/Hr_top", "top/Hr_top , horizontal",
+        "lying flat along the top/Hr_top", "lay it down up top/Hr_top", "sideways along the top/Hr_top",
         "~in the top/Hr_top tier/Hr_top", "~top/Hr_top tier/Hr_top", "~the upper/Hr_top tier/Hr_top",
+        "~tight to the top/Hr_top plate/Hr_top", "~up against the top/Hr_top plate/Hr_top", "~along the top/Hr_top plate/Hr_top",
     ],
     "horizontal_bottom": [
         "down low/Hr_btm", "in the bottom/Hr_btm row/Hr_btm", "across the bottom/Hr_btm", "bottom/Hr_btm row/Hr_btm",
@@ -294,9 +412,33 @@ PLACEMENT = {
         "down at the bottom/Hr_btm", "tight to the floor/Hr_btm", "on the floor/Hr_btm",
         "landscape at the bottom/Hr_btm", "landscape down low/Hr_btm", "lying down at the bottom/Hr_btm",
         "in the bottom/Hr_btm course/Hr_btm", "bottom/Hr_btm course/Hr_btm", "the lower/Hr_btm course/Hr_btm",
+        "down at the floor/Hr_btm", "lower/Hr_btm position", "bottom/Hr_btm position", "low/Hr_btm row/Hr_btm",
+        "along the floor/Hr_btm", "down on the floor/Hr_btm", "laid flat down low/Hr_btm", "bottom/Hr_btm , horizontal",
+        "lying flat along the bottom/Hr_btm", "lay it down low/Hr_btm", "sideways along the bottom/Hr_btm",
         "~in the bottom/Hr_btm tier/Hr_btm", "~bottom/Hr_btm tier/Hr_btm", "~the lower/Hr_btm tier/Hr_btm",
+        "~tight to the bottom/Hr_btm plate/Hr_btm", "~along the bottom/Hr_btm plate/Hr_btm", "~down on the bottom/Hr_btm plate/Hr_btm",
     ],
 }
 #: Placements that cannot be said without a verb-free phrase ("up top" reads fine everywhere).
 PLACEMENT_SENTENCE = ["put it {p}", "it goes {p}", "{p}", "{p} please", "make it {p}", "do it {p}",
-                      "this one {p}", "hang it {p}", "set it {p}", "want it {p}"]
+                      "this one {p}", "hang it {p}", "set it {p}", "want it {p}", "and {p}", "{p} , yeah",
+                      "oh and {p}", "{p} this time", "I want it {p}"]
+#: The placement said first, before the rest ("Up top this time: ...").
+PLACEMENT_FIRST = ["{p} this time", "{p} now", "{p} for this one", "this one goes {p}",
+                   "okay , {p}", "next one {p}"]
+#: The default placement said first: all O.
+DEFAULT_FIRST = ["standing up this time", "vertical", "upright for this one", "normal way up", "stood up"]
+#: A placement wrapped round the stud ({d} is the stud phrase): "with its edge on the centre line of stud 500105".
+PLACEMENT_OF_STUD = {
+    "vertical_left": ["on {d}", "with its edge on the left side of {d}", "lined up with the left side of {d}",
+                      "on {d} , standing up", "on {d} the normal way"],
+    "vertical_middle": ["with its edge on the centre/Vr_md line/Vr_md of {d}", "on the centreline/Vr_md of {d}",
+                        "centred/Vr_md on {d}", "half/Vr_md on {d}", "edge on the centre/Vr_md line/Vr_md of {d}",
+                        "on the middle/Vr_md line/Vr_md of {d}", "centered/Vr_md over {d}", "splitting/Vr_md {d}"],
+    "horizontal_top": ["in the top/Hr_top row/Hr_top starting at {d}", "up top/Hr_top from {d}",
+                       "across the top/Hr_top starting from {d}", "in the top/Hr_top course/Hr_top at {d}",
+                       "flat along the top/Hr_top from {d} on"],
+    "horizontal_bottom": ["in the bottom/Hr_btm row/Hr_btm starting at {d}", "down low/Hr_btm from {d}",
+                          "across the bottom/Hr_btm starting from {d}", "in the bottom/Hr_btm course/Hr_btm at {d}",
+                          "flat along the bottom/Hr_btm from {d} on"],
+}

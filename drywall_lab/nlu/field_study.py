@@ -1,6 +1,6 @@
 """From the corpus to the field: the ablation of issue 11 (``python -m drywall_lab experiment field``).
 
-Six taggers, each trained once with seed 0: the BiLSTM-CRF without and with character features
+Six taggers, each trained once with the shipped tagger's seed: the BiLSTM-CRF without and with character features
 and the MiniLM tagger, each trained on the paper corpus (1,268 instructions) and on the field
 corpus (20,000). Each is scored on
 
@@ -13,13 +13,19 @@ corpus (20,000). Each is scored on
   rate with the single best reading (the paper's pipeline) and with the decision layer.
 
 Everything is written to ``out_dir`` (``ablation.csv``, ``README.md`` with the machine, the wall time and
-the settings); the shipped default tagger's settings are ``DEFAULT_FIELD_TAGGER``.
+the settings); the shipped default tagger's settings are ``DEFAULT_FIELD_TAGGER``. Each model's row is also kept
+in ``rows/<model>.json`` with a fingerprint of what it depends on (the corpus generator, the training corpora,
+the study's and the decision layer's settings, the field sets), so that the six models can be trained in
+separate runs, even at the same time (``--models``), and the table is put together from the rows whose
+fingerprint is current; a row left from an older corpus or setting is never shown.
 """
 from __future__ import annotations
 
+import hashlib
 import json
+import re
 import time
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import pandas as pd
@@ -28,8 +34,10 @@ from drywall_lab.machine import describe_machine, format_load, load_average
 from drywall_lab.nlu.base import Tagger
 
 #: The shipped default tagger: a BiLSTM-CRF with character features, trained on the field corpus
-#: (``make default-tagger`` trains it with these settings).
-DEFAULT_FIELD_TAGGER = {"corpus": "field", "char_features": True, "batch_size": 32, "epochs": 8}
+#: (``make default-tagger`` trains it with these settings). Its seed is the one of the recipe's three seed models
+#: (``benchmarks/field_seeds.py``) with the least decision cost on the generated validation and novel splits
+#: (``benchmarks/results/decision.md``, "cost at the joint choice"; tested), never chosen on the field sets.
+DEFAULT_FIELD_TAGGER = {"corpus": "field", "char_features": True, "batch_size": 32, "epochs": 8, "seed": 2}
 SHARED_FIELD = Path(__file__).resolve().parents[2].parent / "shared" / "field"
 EVALUATION = ("test", "novel", "field-test", "field-novel")
 
@@ -42,7 +50,7 @@ class FieldStudySettings:
     bert_epochs: dict[str, int] = field(default_factory=lambda: {"paper": 10, "field": 2})
     train_sizes: dict[str, int | None] = field(default_factory=lambda: {"paper": None, "field": None})
     evaluation_size: int | None = None
-    seed: int = 0
+    seed: int = DEFAULT_FIELD_TAGGER["seed"]
 
     @classmethod
     def full(cls) -> "FieldStudySettings":
@@ -102,17 +110,48 @@ def score_tagger(tagger: Tagger, settings: FieldStudySettings) -> dict:
     return row
 
 
-def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = None) -> pd.DataFrame:
-    """Train and score the six taggers; write ``ablation.csv`` and ``README.md`` to ``out_dir``."""
+def study_fingerprint(settings: FieldStudySettings) -> str:
+    """A hash of what a row of the ablation depends on besides the code of the taggers and the IM: the field
+    corpus generator, the training corpora, the study's settings, the decision layer's defaults and the field sets."""
+    from drywall_lab.corpus.field_generator import generator_fingerprint
+    from drywall_lab.decision import DEFAULT_SETTINGS
+    from drywall_lab.field import FIELD_DIR
+    from drywall_lab.splits import CORPORA
+
+    digest = hashlib.sha256(json.dumps([generator_fingerprint(), CORPORA, repr(settings), asdict(DEFAULT_SETTINGS),
+                                        DEFAULT_FIELD_TAGGER], sort_keys=True, default=str).encode())
+    for directory in (FIELD_DIR, SHARED_FIELD):
+        for name in ("instructions.jsonl", "gold.jsonl"):
+            if (directory / name).is_file():
+                digest.update(name.encode() + b"\0" + (directory / name).read_bytes())
+    return digest.hexdigest()
+
+
+def _row_path(out: Path, name: str) -> Path:
+    return out / "rows" / (re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-") + ".json")
+
+
+def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = None,
+                    models: list[str] | None = None) -> pd.DataFrame:
+    """Train and score the taggers named in ``models`` (default: all six, ``study_taggers``), keep each row in
+    ``rows/``, and write ``ablation.csv`` and ``README.md`` to ``out_dir`` from every row whose fingerprint is
+    current (the models not run yet are named in the README). Returns the table."""
     from drywall_lab.splits import CORPORA, split_rows, training_rows
 
     settings = settings or FieldStudySettings.full()
+    study = study_taggers(settings)
+    names = [name for name, *_ in study]
+    unknown = sorted(set(models or []) - set(names))
+    if unknown:
+        raise ValueError(f"unknown model(s) {', '.join(unknown)}; the study's models are: {', '.join(names)}")
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    (out / "rows").mkdir(parents=True, exist_ok=True)
+    fingerprint = study_fingerprint(settings)
     machine = describe_machine()
     started = time.perf_counter()
-    rows = []
-    for name, corpus, kind, tagger in study_taggers(settings):
+    for name, corpus, kind, tagger in study:
+        if models is not None and name not in models:
+            continue
         validation_split = CORPORA[corpus][1]
         train = training_rows(corpus)[: settings.train_sizes[corpus]]
         validation = split_rows(validation_split)[: settings.evaluation_size]
@@ -120,20 +159,45 @@ def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = N
         row = {"model": name, "kind": kind, "corpus": corpus, "n_train": len(train),
                "epochs": tagger.training_info.get("epochs"), "train_seconds": tagger.training_info.get("wall_seconds")}
         row.update(score_tagger(tagger, settings))
-        rows.append(row)
-        pd.DataFrame(rows).to_csv(out / "ablation.csv", index=False)  # written as it goes: a long run keeps its rows
+        _row_path(out, name).write_text(json.dumps({"fingerprint": fingerprint, "machine": machine.markdown_lines(),
+                                                    "row": row}, indent=1) + "\n", encoding="utf-8")
         print(json.dumps({k: (round(v, 4) if isinstance(v, float) else v) for k, v in row.items()}), flush=True)
-    table = pd.DataFrame(rows)
     wall = time.perf_counter() - started
+    return write_ablation(out, settings, fingerprint, wall)
+
+
+def write_ablation(out: Path, settings: FieldStudySettings, fingerprint: str, wall: float) -> pd.DataFrame:
+    """``ablation.csv`` and ``README.md`` from the current rows in ``out/rows`` (study order)."""
+    rows, missing, machines = [], [], []
+    for name, *_ in study_taggers(settings):
+        path = _row_path(out, name)
+        kept = json.loads(path.read_text(encoding="utf-8")) if path.is_file() else None
+        if kept is None or kept.get("fingerprint") != fingerprint:
+            missing.append(name)
+            continue
+        rows.append(kept["row"])
+        machines.append(tuple(line for line in kept["machine"] if not line.startswith(("- load", "- date"))))
+    table = pd.DataFrame(rows)
+    table.to_csv(out / "ablation.csv", index=False)
+    machine = describe_machine()
     lines = ["# From the corpus to the field: the ablation (`python -m drywall_lab experiment field`)", "",
              *machine.markdown_lines(), f"- load at the end: {format_load(load_average())}",
-             f"- wall time: {wall / 60:.1f} min", f"- settings: `{settings}`", "",
-             "Each figure is a share of the instructions (steps). `acc_inst`: every tag right; `acc_task`: the "
-             "best reading's command or refusal is the intended one; `decided`: right through the decision layer "
-             "(a question counts as a refusal); `wrong`: the robot acted, not as intended. The field sets are "
-             "played episode by episode as `run` plays them, with the single best reading (`best`) and with the "
-             "decision layer (`decided`).", "", "```",
-             table.drop(columns=["kind"]).set_index("model").T.to_string(float_format=lambda x: f"{x:.3f}"), "```", ""]
+             f"- wall time: {wall / 60:.1f} min (this run); training time of every model: "
+             f"{table['train_seconds'].sum() / 60 if len(table) else 0:.1f} min",
+             f"- settings: `{settings}`", ""]
+    if len(set(machines)) > 1:
+        lines += ["The rows were not all measured on the same machine: see `rows/*.json`.", ""]
+    if missing:
+        lines += [f"Not run yet with the current corpus and settings: {', '.join(missing)} "
+                  f"(`python -m drywall_lab experiment field --models ...`).", ""]
+    lines += ["Each figure is a share of the instructions (steps). `acc_inst`: every tag right; `acc_task`: the "
+              "best reading's command or refusal is the intended one; `decided`: right through the decision layer "
+              "(a question counts as a refusal); `wrong`: the robot acted, not as intended. The field sets are "
+              "played episode by episode as `run` plays them, with the single best reading (`best`) and with the "
+              "decision layer (`decided`).", ""]
+    if len(table):
+        lines += ["```", table.drop(columns=["kind"]).set_index("model").T.to_string(float_format=lambda x: f"{x:.3f}"),
+                  "```", ""]
     (out / "README.md").write_text("\n".join(lines), encoding="utf-8")
     return table
 

@@ -114,8 +114,7 @@ def _least_cost(table: pd.DataFrame, column: str) -> pd.Series:
 
 
 def _settings_of(row: pd.Series) -> DecisionSettings:
-    return replace(DEFAULT_SETTINGS, act=float(row["act"]), recover=float(row["recover"]), doubt=float(row["doubt"]),
-                   margin=float(row["margin"]), pending=bool(row["pending"]))
+    return replace(DEFAULT_SETTINGS, **{name: type(getattr(DEFAULT_SETTINGS, name))(row[name]) for name in SETTINGS})
 
 
 def choose(readings: dict[str, dict[str, Readings]], grid: dict[str, tuple]) -> tuple[DecisionSettings, pd.DataFrame]:

@@ -309,12 +309,19 @@ def second_opinion(decision: Decision, check: Interpretation, any_difference: bo
         question, options, seen = question_between(own, other), [own, other], f"command {_describe(other)}"
     else:
         question, options, seen = _confirm(own, decision.words, []), [own], f"refused ({other[1]})"
+    return ask_instead(decision, question, options, "D second opinion",
+                       f"a second tagger's reading gives {seen} (tags: {' '.join(check.tags)}): ask")
+
+
+def ask_instead(decision: Decision, question: str, options: Sequence[Outcome], rule: str, why: str) -> Decision:
+    """``decision`` turned into a question (refusal ``unclear``) about ``options``; the trace ends with ``rule``
+    and why. Nothing is recorded."""
     chosen = decision.interpretation
     result = Interpretation(list(chosen.words), list(chosen.tags), Trace(list(chosen.trace.steps)), None,
                             Refusal("unclear", question))
-    result.trace.add("decision", "D second opinion", True,
-                     conclusion=f"a second tagger's reading gives {seen} (tags: {' '.join(check.tags)}): ask")
-    return Decision(decision.words, decision.tags, result, decision.confidence, "ask", decision.readings, options)
+    result.trace.add("decision", rule, True, conclusion=why)
+    return Decision(decision.words, decision.tags, result, decision.confidence, "ask", decision.readings,
+                    list(options))
 
 
 # --- one instruction, whole episodes ----------------------------------------------------------------------
@@ -369,14 +376,9 @@ def not_carried_out(decision: Decision, unanswered: Sequence[Decision], history:
                 question = (f"I have not carried out \"{said}\". As things stand this is {_describe(own)}. "
                             "Is that what you mean?")
                 options = [own]
-            chosen = decision.interpretation
-            result = Interpretation(list(chosen.words), list(chosen.tags), Trace(list(chosen.trace.steps)), None,
-                                    Refusal("unclear", question))
-            result.trace.add("decision", "D unanswered question", True,
-                             conclusion=f"with {_describe(option)} carried out the reading gives "
-                                        f"{_describe(other) if other[0] == 'command' else 'a refusal (' + other[1] + ')'}: ask")
-            return Decision(decision.words, decision.tags, result, decision.confidence, "ask", decision.readings,
-                            options)
+            gives = _describe(other) if other[0] == "command" else f"a refusal ({other[1]})"
+            return ask_instead(decision, question, options, "D unanswered question",
+                               f"with {_describe(option)} carried out the reading gives {gives}: ask")
     return decision
 
 

@@ -163,13 +163,14 @@ def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = N
                                                     "row": row}, indent=1) + "\n", encoding="utf-8")
         print(json.dumps({k: (round(v, 4) if isinstance(v, float) else v) for k, v in row.items()}), flush=True)
     wall = time.perf_counter() - started
-    return write_ablation(out, settings, fingerprint, wall)
+    return write_ablation(out, names, settings, fingerprint, wall)
 
 
-def write_ablation(out: Path, settings: FieldStudySettings, fingerprint: str, wall: float) -> pd.DataFrame:
-    """``ablation.csv`` and ``README.md`` from the current rows in ``out/rows`` (study order)."""
+def write_ablation(out: Path, names: list[str], settings: FieldStudySettings, fingerprint: str,
+                   wall: float) -> pd.DataFrame:
+    """``ablation.csv`` and ``README.md`` from the current rows in ``out/rows``, in the order of ``names``."""
     rows, missing, machines = [], [], []
-    for name, *_ in study_taggers(settings):
+    for name in names:
         path = _row_path(out, name)
         kept = json.loads(path.read_text(encoding="utf-8")) if path.is_file() else None
         if kept is None or kept.get("fingerprint") != fingerprint:

@@ -56,12 +56,29 @@ GRID = {
     "doubt": (0.05, 0.2, 1.0),
     "margin": (1.5, 3.0, 5.0),
     "pending": (True, False),
+    "half": ("off", "said"),
+    "through": (False, True),
 }
 #: The columns and order of the sort that ranks the settings: least cost, then the more careful (higher act,
-#: lower recover, lower doubt, wider margin, asking about a back-reference after a step not understood).
-SETTINGS = ["act", "recover", "doubt", "margin", "pending"]
-ORDER = [True, False, True, True, False, False]
-QUICK_GRID = {"act": (0.0, 0.7), "recover": (0.4, 1.0), "doubt": (0.2, 1.0), "margin": (3.0,), "pending": (True, False)}
+#: lower recover, lower doubt, wider margin, asking about a back-reference after a step not understood, counting
+#: half-understood refusals, keeping them open after an action).
+SETTINGS = ["act", "recover", "doubt", "margin", "pending", "half", "through"]
+ORDER = [True, False, True, True, False, False, False, False]
+QUICK_GRID = {"act": (0.0, 0.7), "recover": (0.4, 1.0), "doubt": (0.2, 1.0), "margin": (3.0,), "pending": (True, False),
+              "half": ("off", "said"), "through": (False, True)}
+
+
+def grid_settings(grid: dict[str, tuple]) -> list[dict]:
+    """The grid's settings, one dict each; ``half`` and ``through`` only refine ``pending`` (step 5), so they
+    vary only where it is on. ``half="all"`` is not in the grid: it asks after refusals of instructions that
+    said nothing of the missing part ("any sheet"), and with gold tags that changes intended outcomes."""
+    out = []
+    for values in itertools.product(*(grid[name] for name in SETTINGS)):
+        record = dict(zip(SETTINGS, values))
+        if not record["pending"] and (record["half"] != "off" or record["through"]):
+            continue
+        out.append(record)
+    return out
 
 
 class Readings:
@@ -89,12 +106,15 @@ class Readings:
             self._cache[key] = interpret(words, tags, history)
         return self._cache[key]
 
-    def decide(self, settings: DecisionSettings) -> list:
+    def decide(self, settings: DecisionSettings, checks: list | None = None, any_difference: bool = False) -> list:
+        """One decision a row, the episodes played in order; ``checks``: a second tagger's tags, one a row, for
+        ``play_episode``'s second opinion (``benchmarks/second_opinion.py``)."""
         out: list = [None] * len(self.rows)
         for steps in self.episodes:
             history = ActionHistory.from_commands(self.rows[steps[0]]["context"]["history"])
             decisions = play_episode([self.rows[i]["words"] for i in steps], [self.confidences[i] for i in steps],
-                                     self.labels, history, settings, self.interpret)
+                                     self.labels, history, settings, self.interpret,
+                                     None if checks is None else [checks[i] for i in steps], any_difference)
             for i, decision in zip(steps, decisions):
                 out[i] = decision
         return out
@@ -122,8 +142,7 @@ def choose(readings: dict[str, dict[str, Readings]], grid: dict[str, tuple]) -> 
     of least mean cost over them all wins (ties: the more careful). The table has one row a setting: the mean
     rates over the taggers for each split, each tagger's own cost (``cost:<tagger>``) and the mean ``cost``."""
     rows = []
-    for values in itertools.product(*(grid[name] for name in SETTINGS)):
-        record: dict = dict(zip(SETTINGS, values))
+    for record in grid_settings(grid):
         settings = replace(DEFAULT_SETTINGS, **record)
         per_split: dict[str, list[dict]] = {}
         costs = []

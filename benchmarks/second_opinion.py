@@ -6,8 +6,8 @@ decision layer would act and the second tagger's best reading, through the same 
 another command (rule ``command``) or any other outcome (rule ``any``), the robot asks instead. This script
 measures the rule with a given second tagger (``--check DIR``, a saved tagger), in two parts:
 
-1. **the choice**, on the generated field corpus's validation and novel splits only (each instruction in its
-   own episode context), with ``benchmarks/decision.py``'s cost: ``WRONG_ACTION_COST`` x wrong-action rate +
+1. **the choice**, on the generated field corpus's validation and novel splits only (their episodes played in
+   order, as ``benchmarks/decision.py`` plays them), with ``benchmarks/decision.py``'s cost: ``WRONG_ACTION_COST`` x wrong-action rate +
    over-refusal rate, averaged over the two splits; ``none`` (no check) wins ties;
 2. **the measurement** of every rule on the hand-written field sets (``data/field`` and, where it exists,
    ``../shared/field`` with its own ``score.py``), played episode by episode as ``run`` plays them.
@@ -31,11 +31,10 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from decision import SPLITS, WRONG_ACTION_COST, cost  # noqa: E402 (benchmarks/decision.py: the same rule)
+from decision import SPLITS, WRONG_ACTION_COST, Readings, cost  # noqa: E402 (benchmarks/decision.py: the same rule)
 from field import describe_tagger, field_sets, run_set, shared_score  # noqa: E402 (benchmarks/field.py)
 
-from drywall_lab.decision import decide_rows, decision_scores, second_opinion  # noqa: E402
-from drywall_lab.im import ActionHistory, interpret  # noqa: E402
+from drywall_lab.decision import DEFAULT_SETTINGS, decision_scores  # noqa: E402
 from drywall_lab.machine import describe_machine  # noqa: E402
 from drywall_lab.nlu import load_tagger  # noqa: E402
 from drywall_lab.pipeline import load_tagger_option  # noqa: E402
@@ -48,16 +47,12 @@ RULES = {"none": None, "command": False, "any": True}
 
 
 def split_decisions(rows: list[dict], tagger, check) -> dict[str, list]:
-    """Each rule's decisions on corpus rows, each row against its own episode context."""
-    decisions = decide_rows(rows, tagger)
+    """Each rule's decisions on corpus rows, the split's episodes played in order as ``run`` plays them
+    (``benchmarks/decision.py``'s ``Readings``: each step against the commands the pipeline acted on before it)."""
+    readings = Readings(rows, tagger, DEFAULT_SETTINGS.k)
     check_tags = check.predict([list(r["words"]) for r in rows])
-    out = {rule: [] for rule in RULES}
-    for row, decision, tags in zip(rows, decisions, check_tags):
-        check_reading = interpret(list(row["words"]), tags, ActionHistory.from_commands(row["context"]["history"]))
-        for rule, any_difference in RULES.items():
-            out[rule].append(decision if any_difference is None else second_opinion(decision, check_reading,
-                                                                                     any_difference))
-    return out
+    return {rule: readings.decide(DEFAULT_SETTINGS, None if any_difference is None else check_tags, bool(any_difference))
+            for rule, any_difference in RULES.items()}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -10,7 +10,7 @@ import pytest
 from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, decide, decide_episode, decide_rows,
-                                  decide_tags, decision_scores, not_carried_out, outcome_of, play_episode,
+                                  completions, decide_tags, two_meanings, decision_scores, not_carried_out, outcome_of, play_episode,
                                   question_between, risk_coverage, second_opinion, step_outcome)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
@@ -227,6 +227,107 @@ def test_a_command_the_question_does_not_touch_is_acted_on():
     assert decisions[1].refusal.reason == "overlap" and decisions[2].action == "act"
     history = ActionHistory()
     assert not_carried_out(decisions[1], decisions[:1], history) is decisions[1]  # not acting: unchanged
+
+
+def test_a_centre_line_no_word_says_is_asked_about():
+    """Step 1: "the left line" with 'line' tagged Vr_md puts the panel on the centre line although no word says
+    centre; the robot asks, naming both placements. With a centre word it acts."""
+    words, tags = _wt("panel 500320/ID_wall on 500107/ID_stud stud , left line/Vr_md of stud")
+    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
+    assert d.action == "ask" and d.refusal.reason == "unclear"
+    assert [o[3] for o in d.options] == ["vertical_middle", "vertical_left"]
+    assert "'line', which does not say centre" in str(d.interpretation.trace)
+    for said in ("centre/Vr_md line/Vr_md", "c-l/Vr_md", "centred/Vr_md"):
+        words, tags = _wt(f"panel 500320/ID_wall on 500107/ID_stud stud , {said}")
+        d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
+        assert d.action == "act" and d.command.placement.value == "vertical_middle", said
+
+
+def test_a_reading_that_names_two_panels_is_asked_about():
+    """Step 1: "the 2x8 ... a full one" with both size words tagged: the IM's first rule (width and length) gives the
+    2 x 8 panel, the size word the 4 x 8; the robot asks which, naming both. Words that agree are acted on."""
+    words, tags = _wt("the 2x8/width is up there , a full/dim one on 500106/ID_stud")
+    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
+    assert d.action == "ask" and d.refusal.reason == "unclear"
+    assert [o[1] for o in d.options] == ["500321", "500320"]
+    assert d.refusal.message.startswith("Did you mean panel 500321 or panel 500320")
+    assert "the words name two panels" in str(d.interpretation.trace)
+    agree = _wt("panel 500320/ID_wall , the full/dim one , on 500106/ID_stud")
+    assert two_meanings(("command", "500320", "500106", "vertical_left"), *agree, ActionHistory()) is None
+    d = decide(agree[0], [(agree[1], math.log(0.99))], _sure(agree[1]), TAGS)
+    assert d.action == "act"
+    studs = _wt("panel 500320/ID_wall on 500106/ID_stud , the leftmost/St_loc1 stud")
+    why, _, options = two_meanings(("command", "500320", "500106", "vertical_left"), *studs, ActionHistory())
+    assert why.startswith("the words name two studs") and [o[2] for o in options] == ["500106", "500100"]
+
+
+@pytest.mark.parametrize("split", ["train", "validation", "test", "novel", "field-train", "field-validation",
+                                   "field-test", "field-novel", "field-set"])
+def test_gold_tags_never_meet_the_reading_checks(split):
+    """The two checks of a reading against its own words (step 1) never fire on gold tags: every Vr_md phrase has a
+    centre word, and no gold reading that gives a command names two panels or two studs."""
+    from drywall_lab.im import words as W
+    for row in split_rows(split):
+        centre = [w for w, t in zip(row["words"], row["tags"]) if t == "Vr_md"]
+        assert not centre or W.says_centre_line(centre), (row["id"], centre)
+        if row["expected"]["refusal"] is None:
+            outcome = ("command", *(row["expected"][k] for k in ("drywall_id", "stud_id", "placement")))
+            history = ActionHistory.from_commands(row["context"]["history"])
+            assert two_meanings(outcome, row["words"], row["tags"], history) is None, row["id"]
+
+
+HALF = "a four/width by eight/length three/St_loc1 studs to/St_loc1 the/St_loc1 left/St_loc1 of that one"
+
+
+def test_a_half_understood_refusal_gives_the_commands_it_may_have_meant():
+    """'that one' missed: the panel is known (the 4 x 8 on top), the stud is not; the commands it may have meant are
+    that panel on every stud where it fits. An instruction that says nothing of the panel gives none."""
+    history = ActionHistory()
+    history.record(interpret(*_wt("Put panel 500321/ID_wall on stud 500110/ID_stud")).command)
+    words, tags = _wt(HALF)
+    refused = decide_tags(words, tags, TAGS, history)
+    assert refused.refusal.reason == "undetermined"
+    meant = completions(refused, history, "said")
+    assert {o[1] for o in meant} == {"500320"} and len({o[2] for o in meant}) > 5
+    assert all(history.state.check_fits(o[1], o[2], o[3]) for o in meant)
+    assert completions(refused, history, "off") == []
+    anything = decide_tags(*_wt("put any sheet on stud 500104/ID_stud"), TAGS, history)
+    assert anything.refusal.reason == "undetermined"
+    assert completions(anything, history, "said") == [] and len(completions(anything, history, "all")) == 3
+
+
+def test_a_command_that_rests_on_a_half_understood_refusal_is_asked_about():
+    """Step 5 with ``half="said"``: after "a four by eight three studs to the left of that one" was refused, "the
+    same size again" would be another panel had the robot carried it out, so the robot asks; with ``half="off"``
+    (a refusal is a definite answer) it acts on the last accepted command, as spec section 3 says."""
+    from dataclasses import replace
+    first, first_tags = _wt("Put panel 500321/ID_wall on stud 500110/ID_stud")
+    half, half_tags = _wt(HALF)
+    same, same_tags = _wt("the same/dim size/dim again/dim on 500104/ID_stud")
+    readings = [_Gold(first_tags), _Gold(half_tags), _Gold(same_tags)]
+    on = play_episode([first, half, same], readings, TAGS, ActionHistory(), replace(DEFAULT_SETTINGS, half="said"))
+    assert [d.action for d in on] == ["act", "refuse", "ask"]
+    assert on[2].refusal.message.startswith(f'I have not carried out "{" ".join(half)}"')
+    assert {o[1] for o in on[2].options} == {"500311", "500310"}
+    off = play_episode([first, half, same], readings, TAGS, ActionHistory(), replace(DEFAULT_SETTINGS, half="off"))
+    assert off[2].action == "act" and off[2].command.drywall_id == "500311"
+
+
+def test_an_unanswered_question_stays_open_after_an_unrelated_action():
+    """``through``: a question the worker never answered still stands after the robot acts on something it does not
+    touch; a later command that rests on it is asked about. Without it, acting closes the question."""
+    from dataclasses import replace
+    first, first_tags = _wt("Put panel 500320/ID_wall on stud 500100/ID_stud")
+    unsure, unsure_tags = _wt(CENTRE)
+    left = ["O" if t == "Vr_md" else t for t in unsure_tags]
+    named, named_tags = _wt("Put panel 500322/ID_wall on stud 500108/ID_stud")
+    same, same_tags = _wt(SAME_SIZE.replace("500108", "500104"))
+    steps = [first, unsure, named, same]
+    readings = [_Gold(first_tags), _unsure(unsure, unsure_tags, left), _Gold(named_tags), _Gold(same_tags)]
+    kept = play_episode(steps, readings, TAGS, ActionHistory(), replace(DEFAULT_SETTINGS, through=True))
+    assert [d.action for d in kept] == ["act", "ask", "act", "ask"]
+    closed = play_episode(steps, readings, TAGS, ActionHistory(), replace(DEFAULT_SETTINGS, through=False))
+    assert [d.action for d in closed] == ["act", "ask", "act", "act"]
 
 
 # --- a second opinion ------------------------------------------------------------------------------------------

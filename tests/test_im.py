@@ -111,6 +111,9 @@ def test_two_counts_are_refused():
     ("two studs right/St_loc1 of 500104/St_loc2 , no , three/St_loc1", None),  # the position has its count
     ("number 2 stud first/St_loc1", None),               # a list number before an ordinal
     ("number 2 stud middle/St_loc1", None),              # the middle takes no count
+    ("sitting 3rd one/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of 500103/St_loc2", 1),  # 'one': 3rd's noun
+    ("the second one/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1", 1),
+    ("sitting 3rd/St_loc1 one/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1", None),  # both tagged: the count is 3
 ])
 def test_untagged_count_before(markup, index):
     ti = tagged(markup)

@@ -376,7 +376,8 @@ def test_decision_choice_is_the_least_mean_cost_over_models() -> None:
     def scores(rows, decisions):
         return decisions
 
-    grid = {"act": (0.0, 0.5, 0.9), "recover": (1.0,), "doubt": (1.0,), "margin": (3.0,), "pending": (True,)}
+    grid = {"act": (0.0, 0.5, 0.9), "recover": (1.0,), "doubt": (1.0,), "margin": (3.0,), "pending": (True,),
+            "half": ("off",), "through": (False,)}
 
     def decide(self, settings):
         wrong = 0.0 if settings.act >= self.bar else 0.1
@@ -394,7 +395,8 @@ def test_decision_choice_is_the_least_mean_cost_over_models() -> None:
         script.decision_scores = original
     # costs: act 0.0 -> a 1.1, b 1.1; act 0.5 -> a 0.1, b 1.1; act 0.9 -> a 0.2, b 0.2: the mean picks 0.9
     assert chosen.act == 0.9
-    assert list(alone["own choice"]) == [str((0.5, 1.0, 1.0, 3.0, True)), str((0.9, 1.0, 1.0, 3.0, True))]
+    assert list(alone["own choice"]) == [str((0.5, 1.0, 1.0, 3.0, True, "off", False)),
+                                          str((0.9, 1.0, 1.0, 3.0, True, "off", False))]
     assert list(alone["cost at the joint choice"].round(4)) == [0.2, 0.2]
 
 

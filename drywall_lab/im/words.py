@@ -36,6 +36,9 @@ _EDGE = re.compile(r"^[^\w]+|[^\w]+$")
 LEFT_WORDS = frozenset({"left", "leftmost", "left-most", "lefthand", "left-hand"})
 RIGHT_WORDS = frozenset({"right", "rightmost", "right-most", "righthand", "right-hand"})
 MIDDLE_WORDS = frozenset({"middle", "center", "centre", "central", "halfway", "mid"})
+#: Words that say the centre-line placement (``Vr_md``): every ``Vr_md`` phrase of the guidelines has one.
+CENTRE_LINE_WORDS = MIDDLE_WORDS | {"centred", "centered", "centreline", "centerline", "c-l", "half", "split",
+                                    "splitting"}
 #: Words that point back at the last accepted command ("previous", "the one you just hung").
 BACK_REFERENCE_WORDS = frozenset({
     "same", "previous", "previously", "last", "just", "before", "earlier", "again", "time",
@@ -132,11 +135,16 @@ def untagged_count_before(words: Sequence[str], tags: Sequence[str], tag: str) -
     "zero studs to/St_loc1 the/St_loc1 right/St_loc1": the position's own count ("zero") was not tagged,
     so reading the tagged words alone would drop it. Only a position with no count of its own and a
     direction ("left", "right") or a step word ("over", "places") can be missing one; generic nouns
-    between are skipped; "one" is not a count here ("the one to the right"), nor is an id.
+    between are skipped; "one" is not a count here ("the one to the right"), nor is an id. A tagged position
+    that starts with "one" right after an untagged ordinal ("3rd one/St_loc1 to/St_loc1 the left") has lost its
+    count too: "one" is the ordinal's noun, as ``counts_in`` reads it when both are tagged.
     """
     first = next((i for i, t in enumerate(tags) if t == tag), None)
     if first is None:
         return None
+    if (normalise(words[first]) == "one" and first > 0 and tags[first - 1] in UNTAGGED
+            and ordinal_of(words[first - 1]) is not None):
+        return first - 1  # "3rd one/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1": 'one' is the ordinal's noun
     said = [w for w, t in zip(words, tags) if t == tag]
     if counts_in(said) or not (says_relative(said) or any(normalise(w) in ("left", "right") for w in said)):
         return None
@@ -183,6 +191,11 @@ def direction_of(words: Sequence[str], quoted: str, what: str) -> str:
 
 def says_middle(words: Iterable[str]) -> bool:
     return any(normalise(w) in MIDDLE_WORDS for w in words)
+
+
+def says_centre_line(words: Iterable[str]) -> bool:
+    """ "centre", "c-l", "split the stud": a word that can carry ``Vr_md``; "the left line" alone cannot."""
+    return any(normalise(w) in CENTRE_LINE_WORDS for w in words)
 
 
 def says_from(words: Iterable[str]) -> bool:

@@ -503,7 +503,7 @@ def not_carried_out(decision: Decision, unanswered: Sequence[Decision | tuple[De
     own = outcome_of(decision.interpretation)
     for item in unanswered:
         asked, options = item if isinstance(item, tuple) else (item, item.options)
-        guessed = asked.refusal is not None and asked.refusal.reason != "unclear"
+        guessed = asked.refusal.reason not in NOT_UNDERSTOOD  # a half-understood refusal: what it may have meant
         for option in options:
             if option[0] != "command":
                 continue

@@ -314,20 +314,21 @@ def test_readme_quotes_the_field_seeds_results() -> None:
 
 
 def test_a_second_seed_as_check_is_recorded_as_the_readme_says() -> None:
-    """README: seed 1 as a second opinion turns one wrong action on data/field into a question, none on
-    shared/field, and costs no accuracy (benchmarks/results/second_opinion_seed1.md)."""
-    text = (REPO / "benchmarks" / "results" / "second_opinion_seed1.md").read_text(encoding="utf-8")
-    assert "--check build/field_seeds/seed1" in text and "--quick" not in text
+    """README: another seed of the shipped recipe (seed 2) as a second opinion turns no wrong action on either field
+    set into a question, and costs accuracy (benchmarks/results/second_opinion_seed2.md)."""
+    text = (REPO / "benchmarks" / "results" / "second_opinion_seed2.md").read_text(encoding="utf-8")
+    assert "--check build/field_seeds/seed2" in text and "--quick" not in text
     readme = " ".join(README.read_text(encoding="utf-8").split())
-    assert "second_opinion_seed1.md`) turns one wrong action on data/field into a question and none on shared/field" in readme
+    assert ("second_opinion_seed2.md`) turns no wrong action on data/field or on shared/field into a question, and "
+            "costs accuracy on both") in readme
     summary = dict(item.split("=") for item in text.split("## Summary")[1].split("```")[1].split())
     rule = summary["chosen"]
     steps = {"data_field": 226, "shared_field": 170}
     removed = {name: round((float(summary[f"{name}_none_wrong_action_rate"])
                             - float(summary[f"{name}_{rule}_wrong_action_rate"])) * n) for name, n in steps.items()}
-    assert removed == {"data_field": 1, "shared_field": 0}
+    assert removed == {"data_field": 0, "shared_field": 0}
     for name in steps:
-        assert float(summary[f"{name}_{rule}_accuracy"]) == float(summary[f"{name}_none_accuracy"])
+        assert float(summary[f"{name}_{rule}_accuracy"]) < float(summary[f"{name}_none_accuracy"])
 
 
 def test_decision_chooses_for_a_recipe_across_models(tmp_path, capsys) -> None:

@@ -252,6 +252,17 @@ def _mass(readings: Iterable[Reading]) -> dict[Outcome, float]:
     return mass
 
 
+def _feasible(history: ActionHistory, command: Outcome) -> bool:
+    """Whether the site, as ``history`` leaves it, lets the robot carry out ``command`` (pick, then fit)."""
+    _, panel, stud, placement = command
+    try:
+        history.state.check_pickable(panel)
+        history.state.check_fits(panel, stud, placement)
+    except Refusal:
+        return False
+    return True
+
+
 def _rule_values(rules, ti: TaggedInstruction, ctx: MappingContext) -> dict[str, str]:
     """Every rule of ``rules`` that applies to the reading, on its own, and the panel or stud it gives."""
     out = {}
@@ -288,13 +299,7 @@ def two_meanings(outcome: Outcome, words: Sequence[str], tags: Sequence[str],
             continue
         other = list(outcome)
         other[index] = others[0]
-        options = [outcome]
-        try:
-            history.state.check_pickable(other[1])
-            history.state.check_fits(other[1], other[2], other[3])
-            options.append(tuple(other))
-        except Refusal:
-            pass
+        options = [outcome] + ([tuple(other)] if _feasible(history, tuple(other)) else [])
         question = question_between(*options) if len(options) > 1 else _confirm(outcome, words, [])
         rules_text = " and ".join(f"{name} ({value})" for name, value in found.items())
         return f"the words name two {what}: {rules_text}", question, options
@@ -469,40 +474,33 @@ def completions(decision: Decision, history: ActionHistory, half: str = "said") 
     try:
         panels = [resolve_target(ti, ctx)]
     except Refusal:
-        if half == "said" and not any(ti.has(t) for t in TARGET_TAGS):
+        if half == "said" and not ti.has(*TARGET_TAGS):
             return []  # nothing said about the panel ("any sheet"): nothing to build on
         panels = [p for p in history.state.tops.values() if p is not None]
     try:
         studs = [resolve_stud(ti, ctx)]
     except Refusal:
-        if half == "said" and not any(ti.has(t) for t in DESTINATION_TAGS):
+        if half == "said" and not ti.has(*DESTINATION_TAGS):
             return []  # nothing said about the stud ("over there")
         studs = list(history.site.stud_ids)
     try:
         placements = [resolve_placement(ti)]
     except Refusal:
         placements = list(Placement)  # two placements said: either
-    out = []
-    for panel, stud, placement in itertools.product(panels, studs, placements):
-        try:
-            history.state.check_pickable(panel)
-            history.state.check_fits(panel, stud, placement)
-        except Refusal:
-            continue
-        out.append(("command", panel, stud, placement.value))
-    return out
+    meant = (("command", panel, stud, placement.value)
+             for panel, stud, placement in itertools.product(panels, studs, placements))
+    return [command for command in meant if _feasible(history, command)]
 
 
-def not_carried_out(decision: Decision, unanswered: Sequence[Decision | tuple[Decision, Sequence[Outcome]]],
+def not_carried_out(decision: Decision, unanswered: Sequence[tuple[Decision, Sequence[Outcome]]],
                     history: ActionHistory, interpreter: Callable = im_interpret) -> Decision:
     """Step 5 of the module docstring: ``decision`` would act, but the robot has asked about earlier steps
-    (``unanswered``: decisions, or (decision, commands it may have meant) pairs) and has not carried them out. If
-    recording one of the commands asked about would make the same reading give another outcome, ask, naming both."""
+    (``unanswered``: (decision, the commands it asked about or may have meant) pairs) and has not carried them
+    out. If recording one of those commands would make the same reading give another outcome, ask, naming both."""
     if not decision.acted:
         return decision
     own = outcome_of(decision.interpretation)
-    for item in unanswered:
-        asked, options = item if isinstance(item, tuple) else (item, item.options)
+    for asked, options in unanswered:
         guessed = asked.refusal.reason not in NOT_UNDERSTOOD  # a half-understood refusal: what it may have meant
         for option in options:
             if option[0] != "command":

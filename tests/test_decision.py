@@ -9,9 +9,9 @@ import pytest
 
 from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import TAGS
-from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, decide, decide_episode, decide_rows,
-                                  completions, decide_tags, two_meanings, decision_scores, not_carried_out, outcome_of, play_episode,
-                                  question_between, risk_coverage, second_opinion, step_outcome)
+from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, completions, decide, decide_episode,
+                                  decide_rows, decide_tags, decision_scores, not_carried_out, outcome_of, play_episode,
+                                  question_between, risk_coverage, second_opinion, step_outcome, two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
 from drywall_lab.splits import split_rows
@@ -226,7 +226,8 @@ def test_a_command_the_question_does_not_touch_is_acted_on():
                              TAGS, ActionHistory())
     assert decisions[1].refusal.reason == "overlap" and decisions[2].action == "act"
     history = ActionHistory()
-    assert not_carried_out(decisions[1], decisions[:1], history) is decisions[1]  # not acting: unchanged
+    asked = [(decisions[0], decisions[0].options)]
+    assert not_carried_out(decisions[1], asked, history) is decisions[1]  # not acting: unchanged
 
 
 def test_a_centre_line_no_word_says_is_asked_about():

@@ -1,7 +1,7 @@
 """How much of a field figure is the training run? The shipped recipe trained with several seeds, each played on the
 hand-written field sets.
 
-The shipped tagger is one training run (``make default-tagger``, seed 0). On 170 or 226 hand-written steps one
+The shipped tagger is one training run (``make default-tagger``, ``DEFAULT_FIELD_TAGGER["seed"]``). On 170 or 226 hand-written steps one
 instruction is half a point, and two runs of the same recipe on the same corpus can disagree on dozens of them.
 This script trains the shipped recipe (``drywall_lab.nlu.field_study.DEFAULT_FIELD_TAGGER``: BiLSTM-CRF with
 character features on the field corpus, one torch thread, CPU) with each seed of ``--seeds``, plays ``data/field``

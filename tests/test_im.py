@@ -125,6 +125,17 @@ def test_ids_in_keeps_order_and_drops_repeats():
     assert W.ids_in(["500107,", "stud", "#500103", "500107"]) == ["500107", "500103"]
 
 
+def test_a_number_after_a_hash_is_a_label():
+    assert W.numbers_in("#4") == [] and W.counts_in(["#2", "from", "the", "left"]) == []
+    assert W.ids_in(["#500107"]) == ["500107"]
+
+
+def test_ids_in_reads_a_possessive_id_as_the_id():
+    assert W.ids_in(["500104's", "centre", "line"]) == ["500104"]
+    assert W.ids_in(["500300’s"]) == ["500300"]
+    assert W.ids_in(["4's", "stud's"]) == []  # not an id: too short, or no number
+
+
 # --- target rules (Figs. 10 and 11) --------------------------------------------------------
 TARGETS = [
     # rule 1: ids
@@ -167,6 +178,9 @@ TARGETS = [
     ("the panel second/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1 of panel 500310/Dw_loc2", (), "500322"),
     ("the panel two/Dw_loc1 places/Dw_loc1 to/Dw_loc1 the/Dw_loc1 left/Dw_loc1 of 500302/Dw_loc2", (), "500320"),
     ("the panel left/Dw_loc1 of the previous/Dw_loc2 one", (("500322", "500100", "vertical_left"),), "500321"),
+    ("a panel off the pile right/Dw_loc1 of 500300's/Dw_loc2", (), "500321"),  # a possessive id
+    ("take 500311's/ID_wall twin", (), "500311"),
+    ("job card #4/width : a regular/dim panel", (), "500320"),  # '#4' is the card's number, not a size
     ("it is the one left/Dw_loc1 of 500301/Dw_loc2", (), "500320"),  # "one" untagged: the generic noun
     # "zero", "0" and "same" mean 0 places: the anchor's own stack
     ("the panel zero/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1 of 500300/Dw_loc2", (), "500320"),
@@ -299,6 +313,7 @@ STUDS = [
     ("the stud zero/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of the previous/St_loc2 one",
      (("500320", "500104", "vertical_left"),), "500104"),
     ("the stud twelve/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of 500112/St_loc2", (), "500100"),
+    ("on 500106's/ID_stud centre line", (), "500106"),
 ]
 
 
@@ -484,6 +499,33 @@ def test_tagged_instruction_checks_its_input():
         TaggedInstruction(["a", "b", "c"], ["O", "O"])
     with pytest.raises(ValueError, match="unknown tag"):
         TaggedInstruction(["a"], ["B-ID_wall"])
+
+
+@pytest.mark.parametrize("word, punctuation", [("•", True), ("—", True), ("->", True), ("|", True), ("4x8", False),
+                                                ("#4", False), ("stud's", False), ("é", False)])
+def test_is_punctuation(word, punctuation):
+    assert W.is_punctuation(word) is punctuation
+
+
+def test_a_tag_on_punctuation_is_read_as_o():
+    """A bullet or a dash carries no information (guidelines 1): a tagger's tag on it changes nothing."""
+    words = ["•", "Panel", "4", "by", "8", "•", "Stud", "500104", "—", "centre", "line"]
+    tags = ["St_loc1", "O", "width", "O", "length", "St_loc1", "O", "ID_stud", "Dw_loc1", "Vr_md", "Vr_md"]
+    ti = TaggedInstruction(words, tags)
+    assert [t for w, t in zip(ti.words, ti.tags) if W.is_punctuation(w)] == ["O", "O", "O"]
+    result = interpret(words, tags)
+    assert result.command is not None and (result.command.drywall_id, result.command.stud_id) == ("500320", "500104")
+    assert result.tags[0] == "O"
+
+
+@pytest.mark.parametrize("split", ["train", "validation", "test", "novel", "field-train", "field-validation",
+                                   "field-test", "field-novel", "field-set"])
+def test_gold_tags_never_tag_punctuation(split):
+    """So reading a tag on punctuation as ``O`` never changes a gold reading."""
+    from drywall_lab.splits import split_rows
+    tagged_punctuation = [(row["id"], w, t) for row in split_rows(split) for w, t in zip(row["words"], row["tags"])
+                          if t not in ("O", "Trg", "Dst") and W.is_punctuation(w)]
+    assert not tagged_punctuation, tagged_punctuation[:5]
 
 
 def test_coreference_tags_are_read_as_o():

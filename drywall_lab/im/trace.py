@@ -21,7 +21,10 @@ class TaggedInstruction:
     """An instruction's words with one tag each, as the NLU module gives them.
 
     The co-reference tags ``Trg`` and ``Dst`` (the paper's Table 5 variant) are
-    accepted and read as ``O``: the rules use only the 13 tags of spec section 2.
+    accepted and read as ``O``: the rules use only the 13 tags of spec section 2. A word
+    with neither a letter nor a digit (a bullet ``•``, a dash ``—``) is punctuation, which
+    carries no information (annotation guidelines 1): its tag is read as ``O`` whatever the
+    tagger said.
     """
 
     words: tuple[str, ...]
@@ -34,6 +37,7 @@ class TaggedInstruction:
         unknown = sorted(set(tags) - set(COREF_TAGS))
         if unknown:
             raise ValueError(f"unknown tag(s) {', '.join(unknown)}; the tags are {', '.join(COREF_TAGS)}")
+        tags = tuple("O" if W.is_punctuation(w) else t for w, t in zip(words, tags))
         object.__setattr__(self, "words", words)
         object.__setattr__(self, "tags", tags)
 

@@ -32,6 +32,7 @@ _ORDINAL_WORDS: dict[str, int] = {word: n for n, word in ORDINAL_WORDS.items()} 
 _ORDINAL_DIGITS = re.compile(r"^(\d+)(?:st|nd|rd|th)$")
 _PIECES = re.compile(r"\d+|[a-z]+")
 _EDGE = re.compile(r"^[^\w]+|[^\w]+$")
+_POSSESSIVE_ID = re.compile(r"^(\d{4,})['’]s$")
 
 LEFT_WORDS = frozenset({"left", "leftmost", "left-most", "lefthand", "left-hand"})
 RIGHT_WORDS = frozenset({"right", "rightmost", "right-most", "righthand", "right-hand"})
@@ -73,6 +74,11 @@ _DIGIT_WORDS: dict[str, str] = {"zero": "0", "oh": "0", "o": "0", "one": "1", "t
                                 "four": "4", "five": "5", "six": "6", "seven": "7", "eight": "8", "nine": "9"}
 
 
+def is_punctuation(word: str) -> bool:
+    """A word with neither a letter nor a digit (``•``, ``—``, ``->``): punctuation, never tagged."""
+    return not any(c.isalnum() for c in word)
+
+
 def normalise(word: str) -> str:
     """Lower case, edge punctuation dropped, short forms spelt out: ``"Centre,"`` -> ``"centre"``, ``"frm"`` -> ``"from"``."""
     w = _EDGE.sub("", word.strip().lower())
@@ -82,8 +88,11 @@ def normalise(word: str) -> str:
 def numbers_in(word: str) -> list[int]:
     """The numbers a word says, in order: ``"4x8"`` -> [4, 8], ``"four-by-eight"`` -> [4, 8], ``"8'"`` -> [8].
 
-    Ordinals are not numbers here (see ``ordinal_of``).
+    Ordinals are not numbers here (see ``ordinal_of``), nor is a number after ``#``: ``"card #4"``, ``"item #2"``
+    are labels, never a size or a count (an id keeps its ``#``: ``ids_in``).
     """
+    if word.strip().startswith("#"):
+        return []
     w = normalise(word)
     if ordinal_of(w) is not None:
         return []
@@ -239,8 +248,8 @@ def size_words(words: Iterable[str]) -> list[str]:
 def ids_in(words: Iterable[str]) -> list[str]:
     """The ids said, in order, without repeats: whole numbers of four or more digits.
 
-    An id is one word ("500107", "#500107") or read out digit by digit over several words
-    ("five oh oh one oh seven", "5 0 0 1 0 7"): a run of single digits makes one id.
+    An id is one word ("500107", "#500107", the possessive "500107's") or read out digit by digit over several
+    words ("five oh oh one oh seven", "5 0 0 1 0 7"): a run of single digits makes one id.
     """
     out: list[str] = []
     run = ""
@@ -252,7 +261,7 @@ def ids_in(words: Iterable[str]) -> list[str]:
         run = ""
 
     for word in words:
-        w = normalise(word).lstrip("#")
+        w = _POSSESSIVE_ID.sub(r"\1", normalise(word).lstrip("#"))
         digit = w if (len(w) == 1 and w.isdigit()) else _DIGIT_WORDS.get(w)
         if digit is not None:
             run += digit

@@ -14,6 +14,7 @@ cannot place with certainty instead of dropping it.
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 from typing import Iterable, Sequence
 
 from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_WORDS
@@ -74,11 +75,13 @@ _DIGIT_WORDS: dict[str, str] = {"zero": "0", "oh": "0", "o": "0", "one": "1", "t
                                 "four": "4", "five": "5", "six": "6", "seven": "7", "eight": "8", "nine": "9"}
 
 
+@lru_cache(maxsize=4096)
 def is_punctuation(word: str) -> bool:
     """A word with neither a letter nor a digit (``•``, ``—``, ``->``): punctuation, never tagged."""
     return not any(c.isalnum() for c in word)
 
 
+@lru_cache(maxsize=8192)
 def normalise(word: str) -> str:
     """Lower case, edge punctuation dropped, short forms spelt out: ``"Centre,"`` -> ``"centre"``, ``"frm"`` -> ``"from"``."""
     w = _EDGE.sub("", word.strip().lower())

@@ -11,7 +11,9 @@ their mean, smallest and largest, to its results file (default ``benchmarks/resu
 
 A seed's model is trained into ``--models``/seed<N> (default ``build/field_seeds``) unless a trained tagger is
 already there; training is bit for bit on the CPU with one thread, so a model found there is the one the command
-would train. Up to ``--jobs`` seeds train at once (about 9 min each on the 2-core CPU with two at once).
+would train, as long as the field corpus is the same: each model's ``corpus.fingerprint`` records the generator it
+was trained from, and a model from another generator (or without the record) stops the script, which asks for it
+to be deleted and trained again. Up to ``--jobs`` seeds train at once (about 9 min each on the 2-core CPU with two at once).
 
     python benchmarks/field_seeds.py [--seeds 0 1 2] [--models DIR] [--jobs 2] [--out FILE] [--quick]
 """
@@ -31,6 +33,7 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from field import field_sets, run_set  # noqa: E402 (benchmarks/field.py: the same play and scores)
 
+from drywall_lab.corpus.field_generator import generator_fingerprint  # noqa: E402
 from drywall_lab.machine import describe_machine  # noqa: E402
 from drywall_lab.nlu import DEFAULT_TAGGER_DIR, load_tagger  # noqa: E402
 from drywall_lab.nlu.field_study import DEFAULT_FIELD_TAGGER  # noqa: E402
@@ -55,12 +58,23 @@ def train_command(seed: int, out: Path, quick: bool) -> list[str]:
     return command
 
 
+STAMP = "corpus.fingerprint"
+
+
 def train_missing(seeds: list[int], models: Path, jobs: int, quick: bool) -> dict[int, str]:
-    """Train every seed whose directory holds no tagger yet, ``jobs`` at a time; how each model was had."""
+    """Train every seed whose directory holds no tagger yet, ``jobs`` at a time; how each model was had.
+
+    A model found is used only if its ``corpus.fingerprint`` is the field corpus generator's now
+    (``generator_fingerprint``); otherwise ``SystemExit`` says which directory to delete."""
+    current = generator_fingerprint()
     how, queue, running = {}, [], []
     for seed in seeds:
         out = models / f"seed{seed}"
         if (out / "tagger.json").is_file():
+            stamp = out / STAMP
+            if not stamp.is_file() or stamp.read_text(encoding="utf-8").strip() != current:
+                raise SystemExit(f"{out} was trained from another field corpus than the generator's now (its {STAMP} "
+                                 f"is {'missing' if not stamp.is_file() else 'different'}): delete it to train it again")
             how[seed] = f"found in {out}"
         else:
             queue.append((seed, out))
@@ -82,6 +96,7 @@ def train_missing(seeds: list[int], models: Path, jobs: int, quick: bool) -> dic
             running.remove(item)
             if process.returncode != 0:
                 raise RuntimeError(f"training seed {seed} failed (exit {process.returncode}); see {log.name}")
+            (out / STAMP).write_text(current + "\n", encoding="utf-8")
             how[seed] = f"trained here in {time.perf_counter() - started:.0f} s"
         time.sleep(1)
     return how

@@ -299,6 +299,11 @@ def test_field_seeds_quick_trains_missing_seeds_and_scores_each(tmp_path) -> Non
     second = out.read_text(encoding="utf-8")
     assert f"seed 5: found in {models / 'seed5'}" in second
     assert second.split("## Summary")[1] == first.split("## Summary")[1]
+    # a model trained from another field corpus is never taken for the recipe's: the script asks for a retrain
+    (models / "seed5" / script.STAMP).write_text("a fingerprint of another generator\n", encoding="utf-8")
+    with pytest.raises(SystemExit, match="trained from another field corpus.*delete it"):
+        script.main(["--quick", "--seeds", "5", "--models", str(models), "--out", str(out)])
+    assert out.read_text(encoding="utf-8") == second
     with pytest.raises(SystemExit):
         script.main(["--quick"])  # a quick run never overwrites the recorded results
 

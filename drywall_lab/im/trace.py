@@ -29,6 +29,8 @@ class TaggedInstruction:
 
     words: tuple[str, ...]
     tags: tuple[str, ...]
+    #: Where each tag stands (tag -> word positions): the rules ask for it thousands of times per decision.
+    _positions: dict[str, list[int]] = field(init=False, repr=False, compare=False)
 
     def __init__(self, words: Sequence[str], tags: Sequence[str]) -> None:
         words, tags = tuple(str(w) for w in words), tuple(str(t) for t in tags)
@@ -44,7 +46,6 @@ class TaggedInstruction:
         positions: dict[str, list[int]] = {}
         for i, t in enumerate(tags):
             positions.setdefault(t, []).append(i)
-        # Where each tag stands: the rules ask for it thousands of times per decision (latency, issue 12).
         object.__setattr__(self, "_positions", positions)
 
     def indices(self, *tags: str) -> list[int]:

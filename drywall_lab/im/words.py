@@ -75,7 +75,6 @@ _DIGIT_WORDS: dict[str, str] = {"zero": "0", "oh": "0", "o": "0", "one": "1", "t
                                 "four": "4", "five": "5", "six": "6", "seven": "7", "eight": "8", "nine": "9"}
 
 
-@lru_cache(maxsize=4096)
 def is_punctuation(word: str) -> bool:
     """A word with neither a letter nor a digit (``•``, ``—``, ``->``): punctuation, never tagged."""
     return not any(c.isalnum() for c in word)

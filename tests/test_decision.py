@@ -14,7 +14,7 @@ from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings,
                                   question_between, risk_coverage, second_opinion, step_outcome, two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
-from drywall_lab.splits import split_rows
+from drywall_lab.splits import ALL_SPLITS, split_rows
 
 
 def _wt(markup: str) -> tuple[list[str], list[str]]:
@@ -262,8 +262,7 @@ def test_a_reading_that_names_two_panels_is_asked_about():
     assert why.startswith("the words name two studs") and [o[2] for o in options] == ["500106", "500100"]
 
 
-@pytest.mark.parametrize("split", ["train", "validation", "test", "novel", "field-train", "field-validation",
-                                   "field-test", "field-novel", "field-set"])
+@pytest.mark.parametrize("split", ALL_SPLITS)
 def test_gold_tags_never_meet_the_reading_checks(split):
     """The two checks of a reading against its own words (step 1) never fire on gold tags: every Vr_md phrase has a
     centre word, and no gold reading that gives a command names two panels or two studs."""

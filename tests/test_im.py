@@ -31,6 +31,7 @@ from drywall_lab.im import (
 )
 from drywall_lab.im import words as W
 from drywall_lab.site import Placement, default_site
+from drywall_lab.splits import ALL_SPLITS, split_rows
 
 SPACING, HALF, H = 0.4064, 0.01905, 2.4384
 WALL_END = 12 * SPACING + HALF
@@ -518,11 +519,9 @@ def test_a_tag_on_punctuation_is_read_as_o():
     assert result.tags[0] == "O"
 
 
-@pytest.mark.parametrize("split", ["train", "validation", "test", "novel", "field-train", "field-validation",
-                                   "field-test", "field-novel", "field-set"])
+@pytest.mark.parametrize("split", ALL_SPLITS)
 def test_gold_tags_never_tag_punctuation(split):
     """So reading a tag on punctuation as ``O`` never changes a gold reading."""
-    from drywall_lab.splits import split_rows
     tagged_punctuation = [(row["id"], w, t) for row in split_rows(split) for w, t in zip(row["words"], row["tags"])
                           if t not in ("O", "Trg", "Dst") and W.is_punctuation(w)]
     assert not tagged_punctuation, tagged_punctuation[:5]

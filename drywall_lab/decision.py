@@ -10,7 +10,7 @@ information-mapping rules against the site and the action history, and then:
    margin gives another command, the readings that give it carry at least ``act`` of the probability,
    and no word it depends on is doubtful (changing a doubtful word's tag to its second choice, or all
    the doubtful words' together, does not change the outcome). The robot acts.
-   Two checks of the best reading against its own words come first; gold tags never meet either (tested on every
+   Three checks of the best reading against its own words come first; gold tags never meet either (tested on every
    generated split and on ``data/field``'s hand-written tags):
 
    - **Two panels or two studs** (``two_meanings``): the IM takes the first target rule that applies ("the 2x8"
@@ -19,6 +19,10 @@ information-mapping rules against the site and the action history, and then:
    - **A centre line no word says**: a reading that puts the panel on the centre line (``Vr_md``) although none
      of the words so tagged says centre ("the left line" with ``line`` tagged ``Vr_md``) is asked about, naming
      both placements: every ``Vr_md`` phrase of the guidelines has a centre word (``words.CENTRE_LINE_WORDS``).
+   - **Lying, read as upright** (``lying_unread``): a reading with no placement tag puts the panel upright on the
+     stud's left line (the default), but a word says it lies ("the 4 by 6 lying down at 500100", with the row words
+     missed). The robot asks, naming the word, instead of standing the panel up. Not when a word takes something
+     back or denies it ("not sideways"; ``words.lying_words``).
 2. **A second reading would be safer**: the best reading is ``undetermined`` (a missed tag), and
    readings within the margin give exactly one command, with at least ``recover`` of the probability:
    the robot takes that reading (the most probable one that is determined and feasible on the site).
@@ -65,7 +69,7 @@ from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from drywall_lab.corpus.tags import DESTINATION_TAGS, TARGET_TAGS
+from drywall_lab.corpus.tags import DESTINATION_TAGS, PLACEMENT_TAGS, TARGET_TAGS
 from drywall_lab.errors import Refusal
 from drywall_lab.im import ActionHistory, Interpretation, RobotCommand, Trace
 from drywall_lab.im import interpret as im_interpret
@@ -321,6 +325,19 @@ def centre_line_unsaid(outcome: Outcome, words: Sequence[str], tags: Sequence[st
     return why, _confirm(outcome, words, unsaid), [outcome]
 
 
+def lying_unread(outcome: Outcome, words: Sequence[str], tags: Sequence[str]) -> tuple[str, str, list[Outcome]] | None:
+    """A reading with no placement tag (upright on the left line, the default) although a word says the panel lies
+    ("lying down", "sideways", ``words.lying_words``): why, the question (naming the word) and the command asked about;
+    None otherwise. The guidelines tag the row words of a lying panel, never the lying word itself."""
+    if outcome[0] != "command" or any(tag in PLACEMENT_TAGS for tag in tags):
+        return None
+    lying = W.lying_words(words)
+    if not lying:
+        return None
+    why = f"the panel stands upright by default, but {W.quote([words[i] for i in lying])} says it lies"
+    return why, _confirm(outcome, words, lying), [outcome]
+
+
 # --- the decision ------------------------------------------------------------------------------------------
 def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], marginals: np.ndarray,
            labels: Sequence[str], history: ActionHistory | None = None,
@@ -363,6 +380,7 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
                           Refusal("unclear", question_between(best.outcome, others[0])), [best.outcome, others[0]])
         checked = (two_meanings(best.outcome, words, best.tags, history)
                    or centre_line_unsaid(best.outcome, words, best.tags, history, interpret)
+                   or lying_unread(best.outcome, words, best.tags)
                    if settings.word_checks else None)
         if checked is not None:
             why, question, options = checked

@@ -11,7 +11,8 @@ from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, completions, decide, decide_episode,
                                   decide_rows, decide_tags, decision_scores, not_carried_out, outcome_of, play_episode,
-                                  question_between, risk_coverage, second_opinion, step_outcome, two_meanings)
+                                  lying_unread, question_between, risk_coverage, second_opinion, step_outcome,
+                                  two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
 from drywall_lab.splits import ALL_SPLITS, split_rows
@@ -244,6 +245,25 @@ def test_a_centre_line_no_word_says_is_asked_about():
         assert d.action == "act" and d.command.placement.value == "vertical_middle", said
 
 
+def test_a_lying_panel_read_as_upright_is_asked_about():
+    """Step 1: "lying down" with the row words missed gives the default, upright on the left line; the robot asks,
+    naming the word. With the row tagged, a take-back or denial, or a word that says upright, it acts."""
+    words, tags = _wt("the 4/width by 6/length lying down at the bottom of stud 500100/ID_stud")
+    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
+    assert d.action == "ask" and d.refusal.reason == "unclear"
+    assert d.options == [("command", "500322", "500100", "vertical_left")]
+    assert "I am not sure what 'lying' means here" in d.refusal.message
+    assert "says it lies" in str(d.interpretation.trace)
+    for said in ("lying down at the bottom/Hr_btm of stud 500100/ID_stud",  # the row read
+                 "on stud 500100/ID_stud , not sideways",  # denied
+                 "sideways no wait on stud 500100/ID_stud",  # taken back
+                 "on stud 500100/ID_stud upright , we did the last wall sideways"):  # upright said too
+        words, tags = _wt(f"the 4/width by 6/length {said}")
+        d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
+        assert d.action == "act", said
+    assert lying_unread(("refusal", "undetermined"), *_wt("lay it down somewhere")) is None
+
+
 def test_a_reading_that_names_two_panels_is_asked_about():
     """Step 1: "the 2x8 ... a full one" with both size words tagged: the IM's first rule (width and length) gives the
     2 x 8 panel, the size word the 4 x 8; the robot asks which, naming both. Words that agree are acted on."""
@@ -264,8 +284,9 @@ def test_a_reading_that_names_two_panels_is_asked_about():
 
 @pytest.mark.parametrize("split", ALL_SPLITS)
 def test_gold_tags_never_meet_the_reading_checks(split):
-    """The two checks of a reading against its own words (step 1) never fire on gold tags: every Vr_md phrase has a
-    centre word, and no gold reading that gives a command names two panels or two studs."""
+    """The three checks of a reading against its own words (step 1) never fire on gold tags: every Vr_md phrase has
+    a centre word, no gold reading that gives a command names two panels or two studs, and none stands a panel
+    upright that a word says lies."""
     from drywall_lab.im import words as W
     for row in split_rows(split):
         centre = [w for w, t in zip(row["words"], row["tags"]) if t == "Vr_md"]
@@ -274,6 +295,7 @@ def test_gold_tags_never_meet_the_reading_checks(split):
             outcome = ("command", *(row["expected"][k] for k in ("drywall_id", "stud_id", "placement")))
             history = ActionHistory.from_commands(row["context"]["history"])
             assert two_meanings(outcome, row["words"], row["tags"], history) is None, row["id"]
+            assert lying_unread(outcome, row["words"], row["tags"]) is None, row["id"]
 
 
 HALF = "a four/width by eight/length three/St_loc1 studs to/St_loc1 the/St_loc1 left/St_loc1 of that one"

@@ -41,6 +41,18 @@ MIDDLE_WORDS = frozenset({"middle", "center", "centre", "central", "halfway", "m
 #: Words that say the centre-line placement (``Vr_md``): every ``Vr_md`` phrase of the guidelines has one.
 CENTRE_LINE_WORDS = MIDDLE_WORDS | {"centred", "centered", "centreline", "centerline", "c-l", "half", "split",
                                     "splitting"}
+#: Words that say a panel lies, but that stay ``O`` (annotation guidelines 4.7: "sideways", "lay it down",
+#: "horizontal(ly)" before a row word): a reading with no placement tag puts the panel upright, and these say not.
+LYING_WORDS = frozenset({"horizontal", "horizontally", "sideways", "landscape", "lying", "lies", "lay", "lays",
+                         "laid"})
+#: Words that say a panel stands ("upright", "stood up on its end"), also ``O``: the default placement.
+UPRIGHT_WORDS = frozenset({"upright", "vertical", "vertically", "standing", "stood", "stand", "stands", "plumb",
+                           "portrait"})
+#: Words that take back or deny what was said ("not lying down", "lying down, no wait, upright", "let me say that
+#: again"): a placement word near them may be the abandoned one (guidelines 4.7, corrections).
+TAKE_BACK_WORDS = frozenset({"not", "no", "don't", "dont", "never", "wait", "sorry", "actually", "scratch", "meant",
+                             "mean", "correction", "disregard", "ignore", "strike", "rather", "instead", "oops", "bad",
+                             "hang", "hold", "wrong", "said", "say"})
 #: Words that point back at the last accepted command ("previous", "the one you just hung").
 BACK_REFERENCE_WORDS = frozenset({
     "same", "previous", "previously", "last", "just", "before", "earlier", "again", "time",
@@ -207,6 +219,20 @@ def says_middle(words: Iterable[str]) -> bool:
 def says_centre_line(words: Iterable[str]) -> bool:
     """ "centre", "c-l", "split the stud": a word that can carry ``Vr_md``; "the left line" alone cannot."""
     return any(normalise(w) in CENTRE_LINE_WORDS for w in words)
+
+
+def lying_words(words: Sequence[str]) -> list[int]:
+    """Where the words say the panel lies ("lying down", "sideways", "horizontally"), unless a word takes something
+    back or denies it ("not sideways", "no wait"; the lying word may be the abandoned one) or a word says it stands
+    ("we did the last wall sideways; this one upright"): then none is given.
+
+    >>> lying_words("the 4 by 6 lying down at 500100".split()), lying_words("not sideways , upright".split())
+    ([4], [])
+    """
+    said = [normalise(w) for w in words]
+    if any(w in TAKE_BACK_WORDS or w in UPRIGHT_WORDS for w in said):
+        return []
+    return [i for i, w in enumerate(said) if w in LYING_WORDS]
 
 
 def says_from(words: Iterable[str]) -> bool:

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import shlex
 import sys
 import time
 from pathlib import Path
@@ -35,6 +34,8 @@ import pandas as pd
 from drywall_lab.corpus import read_split
 from drywall_lab.machine import describe_machine, format_load, load_average
 from drywall_lab.nlu.base import Tagger
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from results_file import add_results_options, command_line, results_path, write_results_file  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results" / "bert_settings.md"
 #: The rule's window: the last this-many epochs of each validation curve.
@@ -93,18 +94,11 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--learning-rates", type=float, nargs="+", default=[1e-4, 2e-4, 3e-4], metavar="LR")
     parser.add_argument("--epochs", type=int, default=10)
     parser.add_argument("--warmup-ratio", type=float, default=0.1)
-    parser.add_argument("--out", type=Path, default=None,
-                        help="the results file to write (default benchmarks/results/bert_settings.md)")
-    parser.add_argument("--quick", action="store_true",
-                        help="a seconds-long check that the script works (4 instructions, 1 epoch, 4 validation "
-                             "instructions); the figures mean nothing")
+    add_results_options(parser, RESULTS, "4 instructions, 1 epoch, 4 validation instructions, in seconds")
     args = parser.parse_args(argv)
     if args.quick:
         args.sizes, args.learning_rates, args.epochs = QUICK["sizes"], QUICK["learning_rates"], QUICK["epochs"]
-    if args.out is None:
-        if args.quick:
-            parser.error("--quick figures mean nothing: give --out FILE so that they do not replace the recorded results")
-        args.out = RESULTS
+    args.out = results_path(parser, args, RESULTS)
     if min(args.sizes) < 1 or args.epochs < 1 or min(args.learning_rates) <= 0:
         parser.error("sizes and epochs must be at least 1 and learning rates positive")
     return args
@@ -113,7 +107,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     args = parse_args(argv)
-    command = shlex.join(["python", "benchmarks/bert_settings.py", *argv])
+    command = command_line("bert_settings.py", argv)
     machine = describe_machine()
     print(f"machine: {machine.summary()}", flush=True)
     train, validation = read_split("train"), read_split("validation")
@@ -179,8 +173,7 @@ def write_results(path: Path, *, command: str, machine, args: argparse.Namespace
         "(`drywall_lab/nlu/experiments.py`); `tests/test_experiments.py` checks that it is this choice.",
         "",
     ]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text("\n".join(text), encoding="utf-8")
+    write_results_file(path, text)
 
 
 if __name__ == "__main__":

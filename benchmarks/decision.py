@@ -46,7 +46,9 @@ from drywall_lab.machine import describe_machine
 from drywall_lab.pipeline import load_tagger_option
 from drywall_lab.splits import split_rows
 
-ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from results_file import add_results_options, command_line, results_path, write_results_file  # noqa: E402
+
 RESULTS = Path(__file__).resolve().parent / "results" / "decision.md"
 SPLITS = ("field-validation", "field-novel")
 WRONG_ACTION_COST = 10
@@ -179,16 +181,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--tagger", action="append", default=None,
                         help="a saved tagger's directory; give it once per model to choose for a recipe across "
                              "seeds (default: the shipped tagger alone)")
-    parser.add_argument("--out", type=Path, default=None, help=f"results file (default {RESULTS.relative_to(ROOT)})")
-    parser.add_argument("--quick", action="store_true", help="200 instructions a split and a small grid (needs --out)")
+    add_results_options(parser, RESULTS, "200 instructions a split and a small grid")
     args = parser.parse_args(argv)
-    if args.quick and args.out is None:
-        parser.error("--quick writes a check, not the recorded choice: give --out")
+    out = results_path(parser, args, RESULTS)
     options = args.tagger or [None]
     names = [option or "the shipped tagger" for option in options]
     if len(set(names)) != len(names):
         parser.error("each --tagger must name a different model")
-    out = args.out or RESULTS
     machine = describe_machine()
     grid = QUICK_GRID if args.quick else GRID
     started = time.perf_counter()
@@ -200,7 +199,7 @@ def main(argv: list[str] | None = None) -> int:
     chosen, table = choose(readings, grid)
     first = readings[names[0]]
     lines = ["# Decision layer: thresholds and risk against coverage (`benchmarks/decision.py`)", "",
-             f"**Command:** `python benchmarks/decision.py{''.join(' ' + a for a in (argv if argv is not None else sys.argv[1:]))}`",
+             f"**Command:** `{command_line('decision.py', (argv if argv is not None else sys.argv[1:]))}`",
              "", f"**Taggers:** {', '.join(names)}", "", *machine.markdown_lines(), "",
              f"Splits: {', '.join(f'{s} ({len(r.rows)} instructions)' for s, r in first.items())}; "
              f"{len(table)} settings; rule: least mean of {WRONG_ACTION_COST} x wrong-action rate + over-refusal "
@@ -233,8 +232,7 @@ def main(argv: list[str] | None = None) -> int:
               "Rates: the mean over the taggers; `cost:<tagger>`: each tagger's own cost.", "", "```",
               best_rows.to_string(index=False, float_format=lambda x: f"{x:.4f}"), "```", "",
               f"{time.perf_counter() - started:.0f} s in all.", ""]
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines), encoding="utf-8")
+    write_results_file(out, lines)
     print(compare_table.to_string(index=False, float_format=lambda x: f"{x:.4f}"))
     print(f"chosen={asdict(chosen)}")
     return 0

@@ -32,6 +32,9 @@ from drywall_lab.field import FIELD_DIR, read_field_set, score_run
 from drywall_lab.machine import describe_machine
 from drywall_lab.pipeline import load_tagger_option, run_episodes
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from results_file import add_results_options, command_line, results_path, write_results_file  # noqa: E402
+
 ROOT = Path(__file__).resolve().parent.parent
 SHARED_FIELD = ROOT.parent / "shared" / "field"
 RESULTS = Path(__file__).resolve().parent / "results" / "field.md"
@@ -79,12 +82,13 @@ def describe_tagger(option: str | None, tagger) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped one)")
-    parser.add_argument("--out", type=Path, default=RESULTS, help=f"results file (default {RESULTS.relative_to(ROOT)})")
+    add_results_options(parser, RESULTS)
     args = parser.parse_args(argv)
+    out = results_path(parser, args, RESULTS)
     machine = describe_machine()
     tagger = load_tagger_option(args.tagger)
-    command = "python benchmarks/field.py" + "".join(f" {a}" for a in (argv if argv is not None else sys.argv[1:]))
-    lines = [f"# Field benchmark (`benchmarks/field.py`)", "", f"**Command:** `{command}`", "",
+    command = command_line("field.py", (argv if argv is not None else sys.argv[1:]))
+    lines = ["# Field benchmark (`benchmarks/field.py`)", "", f"**Command:** `{command}`", "",
              f"**Tagger:** {describe_tagger(args.tagger, tagger)}", "", *machine.markdown_lines(), ""]
     summary = []
     for name, directory in field_sets().items():
@@ -102,8 +106,7 @@ def main(argv: list[str] | None = None) -> int:
                     f"{name}_wrong_action_rate={table.loc['ALL', 'wrong_action_rate']:.4f}",
                     f"{name}_over_refusal_rate={table.loc['ALL', 'over_refusal_rate']:.4f}"]
     lines += ["## Summary", "", "```", *summary, "```", ""]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(lines), encoding="utf-8")
+    write_results_file(out, lines)
     print("\n".join(summary))
     return 0
 

@@ -32,6 +32,7 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from field import field_sets, run_set  # noqa: E402 (benchmarks/field.py: the same play and scores)
+from results_file import add_results_options, command_line, results_path, write_results_file  # noqa: E402
 
 from drywall_lab.corpus.field_generator import generator_fingerprint  # noqa: E402
 from drywall_lab.machine import describe_machine  # noqa: E402
@@ -111,12 +112,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], help="the seeds to train (default 0 1 2)")
     parser.add_argument("--models", type=Path, default=MODELS, help=f"where the models go (default {MODELS.relative_to(ROOT)})")
     parser.add_argument("--jobs", type=int, default=2, help="seeds trained at once (default 2)")
-    parser.add_argument("--out", type=Path, default=None, help=f"results file (default {RESULTS.relative_to(ROOT)})")
-    parser.add_argument("--quick", action="store_true", help="300 instructions and one epoch a seed (needs --out)")
+    add_results_options(parser, RESULTS, "300 instructions and one epoch a seed")
     args = parser.parse_args(argv)
-    if args.quick and args.out is None:
-        parser.error("--quick needs --out: the recorded results are full runs")
-    out = args.out or RESULTS
+    out = results_path(parser, args, RESULTS)
     machine = describe_machine()
     started = time.perf_counter()
     how = train_missing(sorted(set(args.seeds)), args.models, args.jobs, args.quick)
@@ -135,7 +133,7 @@ def main(argv: list[str] | None = None) -> int:
     table = pd.DataFrame(rows).set_index("seed")
     figures = [c for c in table.columns if c.split(" ")[-1] in FIGURES]
     spread = table[figures].agg(["mean", "min", "max"])
-    command = "python benchmarks/field_seeds.py" + "".join(f" {a}" for a in (argv if argv is not None else sys.argv[1:]))
+    command = command_line("field_seeds.py", (argv if argv is not None else sys.argv[1:]))
     summary = [f"{column.replace(' ', '_')}_{stat}={spread.loc[stat, column]:.4f}"
                for column in figures if not column.endswith("over_refusal_rate") for stat in ("mean", "min", "max")]
     lines = ["# The shipped recipe, seed by seed, on the field sets (`benchmarks/field_seeds.py`)", "",
@@ -147,8 +145,7 @@ def main(argv: list[str] | None = None) -> int:
              "```", table[["n_train", "epochs", "shipped"]].T.to_string(), "",
              pd.concat([table[figures].T.add_prefix("seed "), spread.T], axis=1).to_string(float_format=lambda x: f"{x:.4f}"),
              "```", "", "## Summary", "", "```", *summary, "```", ""]
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines), encoding="utf-8")
+    write_results_file(out, lines)
     print("\n".join(summary))
     return 0
 

@@ -39,8 +39,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import shlex
-import statistics
 import sys
 import time
 from pathlib import Path
@@ -53,6 +51,8 @@ from drywall_lab.corpus import read_split
 from drywall_lab.machine import describe_machine, format_load, load_average
 from drywall_lab.nlu import BertTagger, default_encoder_path, default_tagger, load_tagger
 from drywall_lab.nlu.bert import _quiet_transformers
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from results_file import add_results_options, command_line, results_path, write_results_file  # noqa: E402
 
 #: Targets of the project's issue: single-instruction p50 on a 2-core CPU.
 TARGETS_MS = {"lstm": 2.0, "minilm": 10.0}
@@ -189,19 +189,12 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument("--batch-size", type=int, default=32)
     parser.add_argument("--train-size", type=int, default=100, help="instructions for the brief MiniLM fine-tuning")
     parser.add_argument("--threads", type=int, default=os.cpu_count() or 1)
-    parser.add_argument("--out", type=Path, default=None,
-                        help="the results file to write (default benchmarks/results/latency.md)")
-    parser.add_argument("--quick", action="store_true",
-                        help="a seconds-long check that the script works: a few instructions, two runs; "
-                             "the figures mean nothing")
+    add_results_options(parser, RESULTS, "a few instructions, two runs, in seconds")
     args = parser.parse_args(argv)
     if args.quick:
         args.passes, args.repeats = QUICK["passes"], QUICK["repeats"]
         args.train_size, args.batch_size = QUICK["train_size"], QUICK["batch_size"]
-    if args.out is None:
-        if args.quick:
-            parser.error("--quick figures mean nothing: give --out FILE so that they do not replace the recorded results")
-        args.out = RESULTS
+    args.out = results_path(parser, args, RESULTS)
     for name in ("repeats", "passes", "batch_size", "train_size", "threads"):
         if getattr(args, name) < 1:
             parser.error(f"--{name.replace('_', '-')} must be at least 1, got {getattr(args, name)}")
@@ -211,7 +204,7 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     args = parse_args(argv)
-    command = shlex.join(["python", "benchmarks/latency.py", *argv])
+    command = command_line("latency.py", argv)
     torch.set_num_threads(args.threads)
     test = read_split("test")[: QUICK["instructions"] if args.quick else None]
     sentences = [r["words"] for r in test]
@@ -335,8 +328,7 @@ def write_results(path: Path, *, command: str, machine, args: argparse.Namespace
         *[f"- {t}" for t in training],
         "",
     ]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text("\n".join(text), encoding="utf-8")
+    write_results_file(path, text)
 
 
 if __name__ == "__main__":

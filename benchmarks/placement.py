@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import argparse
 import random
-import shlex
 import statistics
 import sys
 import time
@@ -38,6 +37,8 @@ from drywall_lab.im import RobotCommand
 from drywall_lab.machine import describe_machine, format_load, load_average
 from drywall_lab.pipeline import paper_layouts
 from drywall_lab.rc import ANGLE_TOLERANCE_DEG, POSITION_TOLERANCE, PlacementResult, RobotCell
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from results_file import add_results_options, command_line, results_path, write_results_file  # noqa: E402
 from drywall_lab.site import default_site
 
 SEED = 20240517
@@ -138,18 +139,11 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--seed", type=int, default=SEED)
     parser.add_argument("--repeats", type=int, default=3, metavar="N",
                         help="run the whole benchmark N times and report the median real-time factor (default 3)")
-    parser.add_argument("--out", type=Path, default=None,
-                        help="the results file to write (default benchmarks/results/placement.md)")
-    parser.add_argument("--quick", action="store_true",
-                        help="a seconds-long check that the script works: one layout step and one random command, "
-                             "twice; the figures mean nothing")
+    add_results_options(parser, RESULTS, "one layout step and one random command, twice, in seconds")
     args = parser.parse_args(argv)
     if args.quick:
         args.random, args.repeats = QUICK["random"], QUICK["repeats"]
-    if args.out is None:
-        if args.quick:
-            parser.error("--quick figures mean nothing: give --out FILE so that they do not replace the recorded results")
-        args.out = RESULTS
+    args.out = results_path(parser, args, RESULTS)
     if args.repeats < 1 or args.random < 0:
         parser.error(f"--repeats must be at least 1 and --random at least 0, got {args.repeats} and {args.random}")
     return args
@@ -158,7 +152,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     args = parse_args(argv)
-    command = shlex.join(["python", "benchmarks/placement.py", *argv])
+    command = command_line("placement.py", argv)
     machine = describe_machine()
     print(f"machine: {machine.summary()}; MuJoCo {mujoco.__version__}", flush=True)
 
@@ -255,8 +249,7 @@ def write_results(path: Path, *, command: str, machine, args: argparse.Namespace
         "```",
         "",
     ]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text("\n".join(text), encoding="utf-8")
+    write_results_file(path, text)
 
 
 if __name__ == "__main__":

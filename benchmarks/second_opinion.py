@@ -33,6 +33,7 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from decision import SPLITS, WRONG_ACTION_COST, Readings, cost  # noqa: E402 (benchmarks/decision.py: the same rule)
 from field import describe_tagger, field_sets, run_set, shared_score  # noqa: E402 (benchmarks/field.py)
+from results_file import add_results_options, command_line, results_path, write_results_file  # noqa: E402
 
 from drywall_lab.decision import DEFAULT_SETTINGS, decision_scores  # noqa: E402
 from drywall_lab.machine import describe_machine  # noqa: E402
@@ -40,7 +41,6 @@ from drywall_lab.nlu import load_tagger  # noqa: E402
 from drywall_lab.pipeline import load_tagger_option  # noqa: E402
 from drywall_lab.splits import split_rows  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
 RESULTS = Path(__file__).resolve().parent / "results" / "second_opinion.md"
 #: rule name -> second_opinion's any_difference (None: no check)
 RULES = {"none": None, "command": False, "any": True}
@@ -59,16 +59,13 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--check", required=True, help="the second tagger's saved directory")
     parser.add_argument("--tagger", default=None, help="the first tagger (default: the shipped one)")
-    parser.add_argument("--out", type=Path, default=None, help=f"results file (default {RESULTS.relative_to(ROOT)})")
-    parser.add_argument("--quick", action="store_true", help="100 instructions a split (needs --out)")
+    add_results_options(parser, RESULTS, "100 instructions a split")
     args = parser.parse_args(argv)
-    if args.quick and args.out is None:
-        parser.error("--quick writes a check of the script, not the recorded results: give --out")
-    out = args.out or RESULTS
+    out = results_path(parser, args, RESULTS)
     machine = describe_machine()
     started = time.perf_counter()
     tagger, check = load_tagger_option(args.tagger), load_tagger(args.check)
-    command = f"python benchmarks/second_opinion.py{''.join(' ' + a for a in (argv if argv is not None else sys.argv[1:]))}"
+    command = command_line("second_opinion.py", (argv if argv is not None else sys.argv[1:]))
     lines = ["# A second opinion on confident mistakes (`benchmarks/second_opinion.py`)", "",
              f"**Command:** `{command}`", "", f"**Tagger:** {describe_tagger(args.tagger, tagger)}", "",
              f"**Check:** {describe_tagger(args.check, check)}", "", *machine.markdown_lines(), ""]
@@ -108,8 +105,7 @@ def main(argv: list[str] | None = None) -> int:
               measured_table.to_string(index=False, float_format=lambda x: f"{x:.4f}"), "```", "",
               "## Summary", "", "```", f"chosen={chosen}", *summary, "```", "",
               f"{time.perf_counter() - started:.0f} s in all.", ""]
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines), encoding="utf-8")
+    write_results_file(out, lines)
     print(measured_table.to_string(index=False, float_format=lambda x: f"{x:.4f}"))
     print("\n".join(summary))
     return 0

@@ -43,6 +43,7 @@ READINGS = {
              ("put the 2/width by 8/length on stud 500104/ID_stud centre line", 0.45)],
     "the full sheet on stud 500100": [("the full/dim sheet on stud 500100/ID_stud", 0.97)],
     "panel 500300 on stud 500108": [("panel 500300/ID_wall on stud 500108/ID_stud", 0.99)],
+    "same again on stud 500106": [("same/dim again/dim on stud 500106/ID_stud", 0.99)],
 }
 
 
@@ -64,6 +65,18 @@ def test_the_second_option_and_no():
     d.say(CENTRE)
     reply = d.say("no")
     assert reply.command is None and "will not" in reply.text and len(d.history) == 0 and d.pending is None
+
+
+def test_same_again_after_a_no_means_the_last_panel_carried_out():
+    """A question answered "no" leaves nothing behind: "same again" is the size of the last panel installed (the
+    4 x 8 from the left stack), not of the 2 x 8 the robot asked about and did not place."""
+    d = Dialogue(ScriptedTagger(READINGS))
+    assert d.say("the full sheet on stud 500100").command.drywall_id == "500320"
+    assert d.say(CENTRE).question
+    assert d.say("no").command is None and d.pending is None and len(d.history) == 1
+    reply = d.say("same again on stud 500106")
+    assert reply.command.as_contract() == {"drywall_id": "500310", "stud_id": "500106", "placement": "vertical_left"}
+    assert [c.drywall_id for c in d.history.commands] == ["500320", "500310"]
 
 
 def test_a_corrected_instruction_replaces_the_question():

@@ -144,12 +144,19 @@ def test_timing_script_help(name: str, capsys) -> None:
         assert option in out
 
 
-@pytest.mark.parametrize("name", ["latency", "placement"])
-def test_quick_figures_never_replace_the_recorded_results(name: str, capsys) -> None:
+@pytest.mark.parametrize("name, argv", [("latency", []), ("placement", []), ("bert_settings", []), ("decision", []),
+                                        ("field_seeds", []), ("second_opinion", ["--check", "models/minilm_field"])])
+def test_quick_figures_never_replace_the_recorded_results(name: str, argv: list[str], capsys) -> None:
+    """Every benchmark with ``--quick`` (benchmarks/results_file.py) stops before anything runs unless given its own
+    ``--out``, and its help names the recorded results file it would otherwise write."""
+    script = load_script(name)
     with pytest.raises(SystemExit) as stop:
-        load_script(name).main(["--quick"])
+        script.main(["--quick", *argv])
     assert stop.value.code == 2
-    assert "--out" in capsys.readouterr().err
+    assert "give --out FILE" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        script.main(["--help"])
+    assert f"benchmarks/results/{name}.md" in " ".join(capsys.readouterr().out.split())
 
 
 @pytest.mark.parametrize("name", ["latency", "placement"])

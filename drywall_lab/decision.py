@@ -10,19 +10,24 @@ information-mapping rules against the site and the action history, and then:
    margin gives another command, the readings that give it carry at least ``act`` of the probability,
    and no word it depends on is doubtful (changing a doubtful word's tag to its second choice, or all
    the doubtful words' together, does not change the outcome). The robot acts.
-   Three checks of the best reading against its own words come first; gold tags never meet either (tested on every
+   Three checks of the best reading against its own words come first; gold tags never meet any (tested on every
    generated split and on ``data/field``'s hand-written tags):
 
    - **Two panels or two studs** (``two_meanings``): the IM takes the first target rule that applies ("the 2x8"
      before "a full one"), but when another rule that applies on its own names another panel (or stud), the
      words allow two commands: the robot asks, naming both.
-   - **A centre line no word says**: a reading that puts the panel on the centre line (``Vr_md``) although none
-     of the words so tagged says centre ("the left line" with ``line`` tagged ``Vr_md``) is asked about, naming
-     both placements: every ``Vr_md`` phrase of the guidelines has a centre word (``words.CENTRE_LINE_WORDS``).
+   - **A placement no word says** (``placement_unsaid``): a reading that puts the panel on the centre line
+     (``Vr_md``) although none of the words so tagged says centre ("the left line" with ``line`` tagged ``Vr_md``),
+     or in a row that none of its words names ("again" tagged ``Hr_top``), is asked about, naming both placements:
+     every placement phrase of the guidelines has a centre or row word (``words.says_placement``).
    - **Lying, read as upright** (``lying_unread``): a reading with no placement tag puts the panel upright on the
      stud's left line (the default), but a word says it lies ("the 4 by 6 lying down at 500100", with the row words
      missed). The robot asks, naming the word, instead of standing the panel up. Not when a word takes something
      back or denies it ("not sideways"; ``words.lying_words``).
+
+   The other readings within the margin must say their placement too: one whose placement tag sits on words that
+   cannot say it ("lol" tagged ``Hr_btm``; ``placement_words_say_it``) is no reading of these words, so it is no
+   rival and asks nothing.
 2. **A second reading would be safer**: the best reading is ``undetermined`` (a missed tag), and
    readings within the margin give exactly one command, with at least ``recover`` of the probability:
    the robot takes that reading (the most probable one that is determined and feasible on the site).
@@ -98,7 +103,7 @@ class DecisionSettings:
     turns a site refusal into a question; ``pending``: in an episode, after a step not understood, ask before
     acting on a command that step would change (module docstring, step 5); ``half``: which ``undetermined``
     refusals count as not understood (``HALF_UNDERSTOOD``); ``through``: whether a question stays open after the
-    robot acts on something else; ``word_checks``: the best reading checked against its own words (step 1).
+    robot acts on something else; ``word_checks``: the readings checked against their own words (step 1).
     """
 
     k: int = 8
@@ -310,19 +315,31 @@ def two_meanings(outcome: Outcome, words: Sequence[str], tags: Sequence[str],
     return None
 
 
-def centre_line_unsaid(outcome: Outcome, words: Sequence[str], tags: Sequence[str], history: ActionHistory,
-                       interpreter: Callable = im_interpret) -> tuple[str, str, list[Outcome]] | None:
-    """A reading that puts the panel on the centre line although none of its ``Vr_md`` words says centre ("the
-    left line" with ``line`` tagged ``Vr_md``): why, the question (the centre line or the reading without
-    ``Vr_md``) and the commands asked about; None when a centre word carries the placement, or there is none."""
-    unsaid = [i for i, tag in enumerate(tags) if tag == "Vr_md"]
-    if not unsaid or W.says_centre_line(words[i] for i in unsaid):
-        return None
-    plain = outcome_of(interpreter(words, ["O" if t == "Vr_md" else t for t in tags], history))
-    why = f"the centre line rests on {W.quote([words[i] for i in unsaid])}, which does not say centre"
-    if plain[0] == "command" and plain != outcome:
-        return why, question_between(outcome, plain), [outcome, plain]
-    return why, _confirm(outcome, words, unsaid), [outcome]
+_SAYS = {"Vr_md": "centre", "Hr_top": "top", "Hr_btm": "bottom"}
+
+
+def placement_words_say_it(words: Sequence[str], tags: Sequence[str]) -> bool:
+    """Whether every placement tag of a reading sits on words that can say it (``words.says_placement``): "centre line"
+    for ``Vr_md``, "the bottom row" for ``Hr_btm``; not "the left line" or "lol". Gold tags always do (tested)."""
+    return all(W.says_placement(tag, [w for w, t in zip(words, tags) if t == tag])
+               for tag in PLACEMENT_TAGS if tag in tags)
+
+
+def placement_unsaid(outcome: Outcome, words: Sequence[str], tags: Sequence[str], history: ActionHistory,
+                     interpreter: Callable = im_interpret) -> tuple[str, str, list[Outcome]] | None:
+    """A reading whose placement rests on words that cannot say it ("the left line" with ``line`` tagged ``Vr_md``;
+    "again" tagged ``Hr_top``): why, the question (that placement, or the reading without the tag) and the commands
+    asked about; None when the words say the placement, or there is none."""
+    for tag in PLACEMENT_TAGS:
+        unsaid = [i for i, t in enumerate(tags) if t == tag]
+        if not unsaid or W.says_placement(tag, [words[i] for i in unsaid]):
+            continue
+        plain = outcome_of(interpreter(words, ["O" if t == tag else t for t in tags], history))
+        why = f"the placement rests on {W.quote([words[i] for i in unsaid])}, which does not say {_SAYS[tag]}"
+        if plain[0] == "command" and plain != outcome:
+            return why, question_between(outcome, plain), [outcome, plain]
+        return why, _confirm(outcome, words, unsaid), [outcome]
+    return None
 
 
 def lying_unread(outcome: Outcome, words: Sequence[str], tags: Sequence[str]) -> tuple[str, str, list[Outcome]] | None:
@@ -357,7 +374,9 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
     if not readings:
         raise ValueError("decide needs at least one tag sequence")
     best = readings[0]
-    within = [r for r in readings if r.logprob >= best.logprob - settings.margin]
+    # A rival must say its placement: "lol" tagged Hr_btm is no reading of the words (step 1).
+    within = [best] + [r for r in readings[1:] if r.logprob >= best.logprob - settings.margin
+                       and (not settings.word_checks or placement_words_say_it(words, r.tags))]
     mass = _mass(readings)
     rival_commands = list(dict.fromkeys(r.outcome for r in within if r.outcome[0] == "command"))
 
@@ -379,7 +398,7 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
             return finish(best, "ask", "two readings give different commands",
                           Refusal("unclear", question_between(best.outcome, others[0])), [best.outcome, others[0]])
         checked = (two_meanings(best.outcome, words, best.tags, history)
-                   or centre_line_unsaid(best.outcome, words, best.tags, history, interpret)
+                   or placement_unsaid(best.outcome, words, best.tags, history, interpret)
                    or lying_unread(best.outcome, words, best.tags)
                    if settings.word_checks else None)
         if checked is not None:

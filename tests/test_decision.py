@@ -11,7 +11,7 @@ from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, completions, decide, decide_episode,
                                   decide_rows, decide_tags, decision_scores, not_carried_out, outcome_of, play_episode,
-                                  lying_unread, question_between, risk_coverage, second_opinion, step_outcome,
+                                  lying_unread, placement_unsaid, placement_words_say_it, question_between, risk_coverage, second_opinion, step_outcome,
                                   two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
@@ -245,6 +245,35 @@ def test_a_centre_line_no_word_says_is_asked_about():
         assert d.action == "act" and d.command.placement.value == "vertical_middle", said
 
 
+def test_a_row_no_word_says_is_asked_about():
+    """Step 1: "same again" with 'again' tagged Hr_top puts the panel in the top row although no word names a row;
+    the robot asks, naming both placements. With a row word it acts."""
+    words, tags = _wt("the 4/width by 6/length same again/Hr_top on stud 500100/ID_stud")
+    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
+    assert d.action == "ask" and [o[3] for o in d.options] == ["horizontal_top", "vertical_left"]
+    assert "'again', which does not say top" in str(d.interpretation.trace)
+    words, tags = _wt("the 4/width by 6/length up top/Hr_top on stud 500100/ID_stud")
+    assert placement_unsaid(("command", "500322", "500100", "horizontal_top"), words, tags, ActionHistory()) is None
+    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
+    assert d.action == "act" and d.command.placement.value == "horizontal_top"
+
+
+def test_a_rival_that_does_not_say_its_placement_asks_nothing():
+    """A reading within the margin whose row rests on a word that names no row ("lol" tagged Hr_btm) is no rival:
+    the robot acts on the best reading. A rival whose row word says it ("bottom") still makes it ask."""
+    words, best = _wt("lol ok full/dim sheet on 500104/ID_stud , bottom")
+    _, lol = _wt("lol/Hr_btm ok full/dim sheet on 500104/ID_stud , bottom")
+    _, bottom = _wt("lol ok full/dim sheet on 500104/ID_stud , bottom/Hr_btm")
+    assert placement_words_say_it(words, best) and placement_words_say_it(words, bottom)
+    assert not placement_words_say_it(words, lol)
+    d = decide(words, [(best, math.log(0.6)), (lol, math.log(0.4))], _sure(best), TAGS)
+    assert d.action == "act" and d.command.placement.value == "vertical_left"
+    d = decide(words, [(best, math.log(0.6)), (bottom, math.log(0.4))], _sure(best), TAGS)
+    assert d.action == "ask" and [o[3] for o in d.options] == ["vertical_left", "horizontal_bottom"]
+    off = DecisionSettings(**{**DEFAULT_SETTINGS.__dict__, "word_checks": False})
+    assert decide(words, [(best, math.log(0.6)), (lol, math.log(0.4))], _sure(best), TAGS, settings=off).action == "ask"
+
+
 def test_a_lying_panel_read_as_upright_is_asked_about():
     """Step 1: "lying down" with the row words missed gives the default, upright on the left line; the robot asks,
     naming the word. With the row tagged, a take-back or denial, or a word that says upright, it acts."""
@@ -284,9 +313,9 @@ def test_a_reading_that_names_two_panels_is_asked_about():
 
 @pytest.mark.parametrize("split", ALL_SPLITS)
 def test_gold_tags_never_meet_the_reading_checks(split):
-    """The three checks of a reading against its own words (step 1) never fire on gold tags: every Vr_md phrase has
-    a centre word, no gold reading that gives a command names two panels or two studs, and none stands a panel
-    upright that a word says lies."""
+    """The checks of a reading against its own words (step 1) never fire on gold tags: every Vr_md phrase has a
+    centre word and every row phrase a row word, no gold reading that gives a command names two panels or two
+    studs, and none stands a panel upright that a word says lies."""
     from drywall_lab.im import words as W
     for row in split_rows(split):
         centre = [w for w, t in zip(row["words"], row["tags"]) if t == "Vr_md"]
@@ -296,6 +325,7 @@ def test_gold_tags_never_meet_the_reading_checks(split):
             history = ActionHistory.from_commands(row["context"]["history"])
             assert two_meanings(outcome, row["words"], row["tags"], history) is None, row["id"]
             assert lying_unread(outcome, row["words"], row["tags"]) is None, row["id"]
+        assert placement_words_say_it(row["words"], row["tags"]), row["id"]
 
 
 HALF = "a four/width by eight/length three/St_loc1 studs to/St_loc1 the/St_loc1 left/St_loc1 of that one"

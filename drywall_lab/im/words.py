@@ -53,6 +53,11 @@ UPRIGHT_WORDS = frozenset({"upright", "vertical", "vertically", "standing", "sto
 TAKE_BACK_WORDS = frozenset({"not", "no", "don't", "dont", "never", "wait", "sorry", "actually", "scratch", "meant",
                              "mean", "correction", "disregard", "ignore", "strike", "rather", "instead", "oops", "bad",
                              "hang", "hold", "wrong", "said", "say"})
+#: Row words that say the top and the bottom row (``Hr_top``, ``Hr_btm``): every row phrase of the guidelines has one
+#: ("up top", "across the top", "the upper course", "at the ceiling"; "down low", "floor level"); a row noun after
+#: them ("row", "course", "half") carries the tag too but says neither row on its own.
+TOP_ROW_WORDS = frozenset({"top", "upper", "high", "ceiling"})
+BOTTOM_ROW_WORDS = frozenset({"bottom", "lower", "low", "floor"})
 #: Words that point back at the last accepted command ("previous", "the one you just hung").
 BACK_REFERENCE_WORDS = frozenset({
     "same", "previous", "previously", "last", "just", "before", "earlier", "again", "time",
@@ -233,6 +238,19 @@ def lying_words(words: Sequence[str]) -> list[int]:
     if any(w in TAKE_BACK_WORDS or w in UPRIGHT_WORDS for w in said):
         return []
     return [i for i, w in enumerate(said) if w in LYING_WORDS]
+
+
+def says_placement(tag: str, words: Iterable[str]) -> bool:
+    """Whether words tagged with the placement tag ``tag`` can say that placement: a centre word for ``Vr_md``
+    ("the left line" cannot), a top or bottom row word for ``Hr_top`` or ``Hr_btm`` ("row" alone, "lol" cannot).
+
+    >>> says_placement("Hr_btm", ["bottom", "row"]), says_placement("Hr_btm", ["lol"]), says_placement("Vr_md", ["line"])
+    (True, False, False)
+    """
+    if tag == "Vr_md":
+        return says_centre_line(words)
+    said = TOP_ROW_WORDS if tag == "Hr_top" else BOTTOM_ROW_WORDS
+    return any(normalise(w) in said for w in words)
 
 
 def says_from(words: Iterable[str]) -> bool:

@@ -137,7 +137,7 @@ BEST_PATH = DecisionSettings(k=1, margin=0.0, act=0.0, recover=1.0, doubt=1.0, q
 #: recipe, by the mean cost over three models trained with seeds 0-2 (``benchmarks/results/decision.md``; a test
 #: checks that they are the recorded choice). Its rule gave ``doubt=1.0``: the doubtful-word check did not lower
 #: the cost there, so it is off by default.
-DEFAULT_SETTINGS = DecisionSettings(k=8, margin=1.5, act=0.0, recover=0.6, doubt=1.0, question=0.2, pending=True,
+DEFAULT_SETTINGS = DecisionSettings(k=8, margin=1.5, act=0.3, recover=0.4, doubt=1.0, question=0.2, pending=True,
                                     half="said", through=True)
 
 

@@ -254,6 +254,7 @@ def test_the_default_tagger_is_shipped_small_and_accurate() -> None:
     assert tagger.uses_characters and tagger.network.char_cnn is not None and tagger.device == "cpu"
     assert sum(f.stat().st_size for f in DEFAULT_TAGGER_DIR.iterdir()) < 4_000_000
     assert len(tagger.history) == DEFAULT_FIELD_TAGGER["epochs"] and tagger.batch_size == DEFAULT_FIELD_TAGGER["batch_size"]
+    assert tagger.swa_epochs == DEFAULT_FIELD_TAGGER["swa_epochs"]
     assert tagger.training_info["n_train_instructions"] == 2 * len(read_split("train")) + 20000  # splits.CORPORA
     test_scores = tagger.evaluate(read_split("test"))
     assert test_scores.acc_inst >= 0.994
@@ -269,6 +270,37 @@ def test_training_is_reproducible(train_rows) -> None:
     words = [r["words"] for r in train_rows[:30]]
     assert a.predict(words) == b.predict(words)
     assert all(torch.equal(x, y) for x, y in zip(a.network.state_dict().values(), b.network.state_dict().values()))
+
+
+def test_weight_averaging_keeps_the_mean_of_the_last_epochs(train_rows, validation_rows, monkeypatch, tmp_path) -> None:
+    """``swa_epochs``: the kept network is the mean of the weights after every optimizer step of the last epochs;
+    training itself is unchanged, the last history row scores the kept network, and the setting is saved."""
+    rows = train_rows[:40]  # 4 steps an epoch at batch 10
+    plain = BiLstmCrfTagger(embedding_dim=8, hidden_size=8, epochs=3, batch_size=10)
+    plain.fit(rows, progress=False, seed=3)
+    steps = []
+    step = torch.optim.Adam.step
+
+    def recording(self, *args, **kwargs):
+        out = step(self, *args, **kwargs)
+        steps.append([p.detach().clone() for group in self.param_groups for p in group["params"]])
+        return out
+
+    monkeypatch.setattr(torch.optim.Adam, "step", recording)
+    averaged = BiLstmCrfTagger(embedding_dim=8, hidden_size=8, epochs=3, batch_size=10, swa_epochs=2)
+    history = averaged.fit(rows, validation_rows[:30], progress=False, seed=3)
+    monkeypatch.undo()
+    assert len(steps) == 12
+    assert all(torch.equal(x, y) for x, y in zip(steps[-1], plain.network.parameters()))  # the same training
+    mean = [torch.stack(weights).mean(dim=0) for weights in zip(*steps[-8:])]  # the last 2 epochs' 8 steps
+    assert all(torch.allclose(x, y, atol=1e-6) for x, y in zip(mean, averaged.network.parameters()))
+    assert not all(torch.equal(x, y) for x, y in zip(plain.network.parameters(), averaged.network.parameters()))
+    kept = averaged.evaluate(validation_rows[:30])
+    assert history.iloc[-1]["val_acc_word"] == pytest.approx(kept.acc_word)
+    loaded = load_tagger(averaged.save(tmp_path / "averaged"))
+    assert loaded.swa_epochs == 2
+    with pytest.raises(ValueError, match="swa_epochs"):
+        BiLstmCrfTagger(swa_epochs=-1)
 
 
 def test_the_coreference_variant(train_rows) -> None:
@@ -793,17 +825,19 @@ def test_train_command_and_its_errors(tmp_path, capsys) -> None:
     for bad in ("1", "1.5", "-0.1", "nan"):
         with pytest.raises(ValueError, match="--word-dropout must be at least 0 and below 1"):
             _run(["train", "bilstm-crf", "--out", str(out_dir), "--word-dropout", bad])
-    for option in (["--char-features"], ["--word-dropout", "0.1"]):
+    with pytest.raises(ValueError, match="--swa-epochs must be at least 0"):
+        _run(["train", "bilstm-crf", "--out", str(out_dir), "--swa-epochs", "-1"])
+    for option in (["--char-features"], ["--word-dropout", "0.1"], ["--swa-epochs", "3"]):
         with pytest.raises(ValueError, match="apply to the bilstm-crf tagger only"):
             _run(["train", "bert", "--out", str(out_dir), *option])
     with pytest.raises(SystemExit):
         _run(["train", "bilstm-crf", "--out", str(out_dir), "--device", "tpu"])
     char_dir = tmp_path / "chars"
     assert _run(["train", "bilstm-crf", "--out", str(char_dir), "--train-size", "20", "--epochs", "1",
-                 "--char-features", "--word-dropout", "0.2", "--device", "cpu"]) == 0
+                 "--char-features", "--word-dropout", "0.2", "--swa-epochs", "1", "--device", "cpu"]) == 0
     assert "trained on cpu" in capsys.readouterr().out
     saved = load_tagger(char_dir)
-    assert saved.uses_characters and saved.word_dropout == 0.2
+    assert saved.uses_characters and saved.word_dropout == 0.2 and saved.swa_epochs == 1
     assert {k: saved.settings()[k] for k in CHAR_FEATURES} == CHAR_FEATURES
     (tmp_path / "broken").mkdir()
     with pytest.raises(TaggerLoadError, match="tagger.json is missing"):

@@ -28,6 +28,14 @@ word the vocabulary lacks ("sheetrock", "4'x8'", "eight-footer") is not only ``<
 it still carries its form. A word replaced by its fallback token by word dropout keeps
 its characters, which is what teaches the network to read them.
 
+**Weight averaging** (off by default; ``swa_epochs``). Over the last ``swa_epochs`` epochs the network's weights
+are averaged after every optimizer step (stochastic weight averaging, Izmailov et al. 2018, "Averaging Weights
+Leads to Wider Optima and Better Generalization"; ``torch.optim.swa_utils.AveragedModel``, equal weights), and the
+average is the trained network. Training is unchanged, and so is the model's size; only the weights kept differ.
+The averaged network generalises better off the generator's language: the shipped recipe with 3 averaged epochs of
+8, over three seeds, is right on more hand-written field steps with fewer wrong actions than without
+(``benchmarks/results/field_seeds.md``; README, "One training run is one draw").
+
 **Confidence** (issue 12). ``predict_marginals`` runs the forward-backward algorithm over
 the CRF's emission, start, end and transition scores (``crf_marginals``);
 ``predict_kbest`` is an exact k-best (list) Viterbi (``crf_kbest``), each sequence's
@@ -48,6 +56,7 @@ import pandas as pd
 import torch
 from torch import nn
 from torch.nn.utils.rnn import pack_padded_sequence, pad_packed_sequence
+from torch.optim.swa_utils import AveragedModel
 from torchcrf import CRF
 from tqdm.auto import tqdm
 
@@ -64,6 +73,7 @@ from drywall_lab.nlu.base import (
     resolve_device,
     seed_everything,
 )
+from drywall_lab.nlu.metrics import acc_inst, acc_word
 
 WEIGHTS_FILE = "weights.safetensors"
 VOCABULARY_FILE = "vocabulary.json"
@@ -392,7 +402,8 @@ class BiLstmCrfTagger(Tagger):
     how unseen words and ids are handled (see the module docstring). ``char_embedding_dim``
     and ``char_filters`` (both 0, off, by default: the paper's network; ``CHAR_FEATURES``
     for Ma & Hovy's 30 and 30) add the character CNN. ``labels`` and ``tag_field`` select
-    the 13-tag task or the co-reference variant (Table 5).
+    the 13-tag task or the co-reference variant (Table 5). ``swa_epochs`` (0, off, by default) averages the
+    weights over the last epochs (module docstring).
     """
 
     kind = "bilstm-crf"
@@ -414,6 +425,7 @@ class BiLstmCrfTagger(Tagger):
         id_prefix_digits: int = 4,
         char_embedding_dim: int = 0,
         char_filters: int = 0,
+        swa_epochs: int = 0,
     ) -> None:
         super().__init__(labels=labels, tag_field=tag_field)
         if min(embedding_dim, hidden_size, num_layers, batch_size, epochs) < 1:
@@ -426,6 +438,8 @@ class BiLstmCrfTagger(Tagger):
             raise ValueError("unk_alpha must be >= 0 and id_prefix_digits in 0..7")
         if learning_rate <= 0:
             raise ValueError(f"learning_rate must be positive, got {learning_rate}")
+        if swa_epochs < 0:
+            raise ValueError(f"swa_epochs must be at least 0 (0: no weight averaging), got {swa_epochs}")
         if char_embedding_dim < 0 or char_filters < 0 or (char_embedding_dim == 0) != (char_filters == 0):
             raise ValueError(
                 "char_embedding_dim and char_filters must both be 0 (no character features) or both positive, "
@@ -443,6 +457,7 @@ class BiLstmCrfTagger(Tagger):
         self.id_prefix_digits = id_prefix_digits
         self.char_embedding_dim = char_embedding_dim
         self.char_filters = char_filters
+        self.swa_epochs = swa_epochs
         self.vocabulary: list[str] = []
         self._index: dict[str, int] = {}
         self.characters: list[str] = []
@@ -464,6 +479,7 @@ class BiLstmCrfTagger(Tagger):
             "id_prefix_digits": self.id_prefix_digits,
             "char_embedding_dim": self.char_embedding_dim,
             "char_filters": self.char_filters,
+            "swa_epochs": self.swa_epochs,
         }
 
     @property
@@ -565,6 +581,8 @@ class BiLstmCrfTagger(Tagger):
         Fig. 13(a) plots it (over the epoch's batches, dropout on, as Keras reports it),
         validation Acc_word / Acc_inst when ``validation_rows`` are given, and seconds.
         ``device``: ``"auto"``, ``"cpu"`` or ``"cuda"`` (``None``: the tagger's, cpu unless ``to`` said so).
+        With ``swa_epochs``, the weights are averaged over the last ``min(swa_epochs, epochs)`` epochs and the
+        last row's validation figures are the averaged network's, the one kept.
         """
         train_rows, gold, validation_rows, validation_gold, epochs = self._fit_input(
             train_rows, validation_rows, epochs, self.epochs
@@ -593,8 +611,11 @@ class BiLstmCrfTagger(Tagger):
         records = []
         bar = tqdm(total=epochs * n_batches, desc=f"{self.kind} training", unit="batch", disable=not progress)
         started = time.perf_counter()
+        averaged = None
         for epoch in range(1, epochs + 1):
             t0 = time.perf_counter()
+            if self.swa_epochs and epoch == max(1, epochs - self.swa_epochs + 1):
+                averaged = AveragedModel(self.network)
             self.network.train()
             order = rng.permutation(len(train_rows))
             total_loss, correct, seen = 0.0, 0, 0
@@ -611,6 +632,8 @@ class BiLstmCrfTagger(Tagger):
                 optimizer.zero_grad()
                 loss.backward()
                 optimizer.step()
+                if averaged is not None:
+                    averaged.update_parameters(self.network)
                 with torch.no_grad():
                     for path, i in zip(self.network.crf.decode(emissions.detach(), mask=mask), index):
                         correct += sum(p == t for p, t in zip(path, tag_lists[i]))
@@ -623,6 +646,13 @@ class BiLstmCrfTagger(Tagger):
                 validation_rows=validation_rows, validation_gold=validation_gold, bar=bar, started=t0,
             ))
         bar.close()
+        if averaged is not None:
+            self.network.load_state_dict(averaged.module.state_dict())
+            if validation_gold is not None:
+                self.network.eval()
+                predicted = self.predict([r["words"] for r in validation_rows])
+                records[-1]["val_acc_word"] = acc_word(validation_gold, predicted)
+                records[-1]["val_acc_inst"] = acc_inst(validation_gold, predicted)
         self.network.eval()
         return self._finish_fit(records, n_train=len(train_rows), n_validation=len(validation_rows), epochs=epochs,
                                 seed=seed, started=started)

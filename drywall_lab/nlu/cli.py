@@ -14,7 +14,8 @@ own as ``python -m drywall_lab.nlu.cli train ...`` / ``... evaluate ...``::
 
 ``--char-features`` adds Ma & Hovy's character CNN to the BiLSTM-CRF (``CHAR_FEATURES``);
 ``--word-dropout P`` sets the least probability with which a training word is replaced by
-its unknown token (rare words more often; see ``drywall_lab.nlu.bilstm_crf``).
+its unknown token (rare words more often; see ``drywall_lab.nlu.bilstm_crf``);
+``--swa-epochs N`` averages the BiLSTM-CRF's weights over the last N epochs (the shipped recipe's 3).
 ``--device auto|cpu|cuda`` (default ``auto``: a GPU when torch sees one, else the CPU)
 says where to train or predict; asking for ``cuda`` on a machine without one is an error.
 
@@ -65,11 +66,13 @@ def make_tagger(
     char_features: bool = False,
     word_dropout: float | None = None,
     batch_size: int | None = None,
+    swa_epochs: int | None = None,
 ) -> Tagger:
     """A fresh tagger of ``kind`` with the paper's settings, for the 13 tags or the co-reference variant.
 
     ``learning_rate`` (either kind) and ``warmup_ratio`` (BERT only) replace the paper's when given;
-    ``char_features`` (Ma & Hovy's character CNN, ``CHAR_FEATURES``) and ``word_dropout`` are BiLSTM-CRF only.
+    ``char_features`` (Ma & Hovy's character CNN, ``CHAR_FEATURES``), ``word_dropout`` and ``swa_epochs`` (weight
+    averaging over the last epochs) are BiLSTM-CRF only.
     """
     from drywall_lab.nlu.bert import DEFAULT_ENCODER, BertTagger
     from drywall_lab.nlu.bilstm_crf import CHAR_FEATURES, BiLstmCrfTagger
@@ -81,8 +84,8 @@ def make_tagger(
             raise ValueError(f"--batch-size must be at least 1, got {batch_size}")
         settings["batch_size"] = batch_size
     if kind == "bert":
-        if char_features or word_dropout is not None:
-            raise ValueError("--char-features and --word-dropout apply to the bilstm-crf tagger only")
+        if char_features or word_dropout is not None or swa_epochs is not None:
+            raise ValueError("--char-features, --word-dropout and --swa-epochs apply to the bilstm-crf tagger only")
         if warmup_ratio is not None:
             settings["warmup_ratio"] = warmup_ratio
         return BertTagger(encoder or DEFAULT_ENCODER, labels=labels, tag_field=tag_field, **settings)
@@ -96,6 +99,10 @@ def make_tagger(
                     f"replaced by its unknown token), got {word_dropout}"
                 )
             settings["word_dropout"] = word_dropout
+        if swa_epochs is not None:
+            if swa_epochs < 0:
+                raise ValueError(f"--swa-epochs must be at least 0 (0: no weight averaging), got {swa_epochs}")
+            settings["swa_epochs"] = swa_epochs
         if char_features:
             settings.update(CHAR_FEATURES)
         return BiLstmCrfTagger(labels=labels, tag_field=tag_field, **settings)
@@ -109,7 +116,7 @@ def cmd_train(args: argparse.Namespace) -> int:
 
     tagger = make_tagger(args.kind, coref=args.coref, encoder=args.encoder, learning_rate=args.learning_rate,
                          warmup_ratio=args.warmup_ratio, char_features=args.char_features,
-                         word_dropout=args.word_dropout, batch_size=args.batch_size)
+                         word_dropout=args.word_dropout, batch_size=args.batch_size, swa_epochs=args.swa_epochs)
     device = resolve_device(args.device)
     validation_split = CORPORA[args.corpus][1]
     train_rows = training_rows(args.corpus)
@@ -230,6 +237,9 @@ def add_commands(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--word-dropout", type=float, default=None, metavar="P",
                    help="bilstm-crf only: each training word is replaced by its unknown token with at least this "
                         "probability (default 0.05; rare words more often)")
+    p.add_argument("--swa-epochs", type=int, default=None, metavar="N",
+                   help="bilstm-crf only: average the weights over the last N epochs (stochastic weight averaging; "
+                        "default 0, off; the shipped recipe: 3)")
     p.add_argument("--device", choices=DEVICE_CHOICES, default="auto",
                    help="where to train: auto (a GPU when there is one, default), cpu or cuda")
     p.add_argument("--seed", type=int, default=DEFAULT_SEED)

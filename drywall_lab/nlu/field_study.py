@@ -85,23 +85,32 @@ def study_taggers(settings: FieldStudySettings) -> list[tuple[str, str, str, Tag
     return out
 
 
-def score_tagger(tagger: Tagger, settings: FieldStudySettings) -> dict:
-    """Every figure of one row of the ablation table (module docstring)."""
-    from drywall_lab.decision import BEST_PATH, DEFAULT_SETTINGS, decide_rows, decision_scores
-    from drywall_lab.field import read_field_set, score_run
+def split_scores(tagger: Tagger, split: str, limit: int | None = None) -> dict[str, float]:
+    """One generated split (its first ``limit`` rows): Acc_inst, acc_task (the best reading through the IM rules)
+    and, through the decision layer (each instruction in its intended context, as ``evaluate`` scores it), the share
+    decided right and the wrong-action rate, keyed ``"<split> <figure>"``."""
+    from drywall_lab.decision import DEFAULT_SETTINGS, decide_rows, decision_scores
     from drywall_lab.im import task_accuracy
     from drywall_lab.nlu.metrics import score_tagging
-    from drywall_lab.pipeline import run_episodes
     from drywall_lab.splits import split_rows
+
+    rows = split_rows(split)[:limit]
+    predicted = tagger.predict([r["words"] for r in rows])
+    decided = decision_scores(rows, decide_rows(rows, tagger, DEFAULT_SETTINGS))
+    return {f"{split} acc_inst": score_tagging(tagger.gold_tags(rows), predicted).acc_inst,
+            f"{split} acc_task": task_accuracy(rows, predicted),
+            f"{split} decided": decided["accuracy"], f"{split} wrong": decided["wrong_action_rate"]}
+
+
+def score_tagger(tagger: Tagger, settings: FieldStudySettings) -> dict:
+    """Every figure of one row of the ablation table (module docstring)."""
+    from drywall_lab.decision import BEST_PATH, DEFAULT_SETTINGS
+    from drywall_lab.field import read_field_set, score_run
+    from drywall_lab.pipeline import run_episodes
 
     row: dict = {}
     for split in EVALUATION:
-        rows = split_rows(split)[: settings.evaluation_size]
-        predicted = tagger.predict([r["words"] for r in rows])
-        decided = decision_scores(rows, decide_rows(rows, tagger, DEFAULT_SETTINGS))
-        row.update({f"{split} acc_inst": score_tagging(tagger.gold_tags(rows), predicted).acc_inst,
-                    f"{split} acc_task": task_accuracy(rows, predicted),
-                    f"{split} decided": decided["accuracy"], f"{split} wrong": decided["wrong_action_rate"]})
+        row.update(split_scores(tagger, split, settings.evaluation_size))
     sets = {"data/field": (None, True)}
     if (SHARED_FIELD / "instructions.jsonl").is_file():
         sets["shared/field"] = (SHARED_FIELD, False)

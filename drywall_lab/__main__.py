@@ -274,7 +274,7 @@ def _cmd_experiment(args: argparse.Namespace) -> int:
         from drywall_lab.nlu.field_study import FieldStudySettings, run_field_study
 
         run_field_study(args.out or "results/field", FieldStudySettings.fast() if args.fast else FieldStudySettings.full(),
-                        args.models)
+                        args.models, keep_models=None if args.keep_models == "none" else args.keep_models)
         return 0
     from drywall_lab.nlu.experiments import ExperimentSettings, run_paper_experiment
 
@@ -317,6 +317,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--models", nargs="+", default=None, metavar="MODEL",
                    help='field: train only these models of the ablation, e.g. "MiniLM field" (the others\' rows are '
                         "kept when they are current); two runs with different models may run at once")
+    p.add_argument("--keep-models", default="build/field_study", metavar="DIR",
+                   help="field: keep the trained models here, and score a model kept here under the same corpus and "
+                        "settings instead of training it again (default build/field_study; 'none': keep nothing)")
     p.set_defaults(func=_cmd_experiment)
 
     p = sub.add_parser("interpret", help="one instruction: tags, the information-mapping rule trace, the command")

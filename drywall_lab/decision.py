@@ -48,7 +48,9 @@ information-mapping rules against the site and the action history, and then:
      understood: the worker meant a command, and the robot's "which stud?" was never answered. It stays open like
      a question, with the commands it may have meant (``completions``: the panel it names on every stud where it
      fits, or every panel on top of a stack for the stud it names), and a command that any of them would change
-     is asked about. Only a changed *command* counts here (a completion on a stud the command would overlap says
+     is asked about. A part counts as said when the best reading or a rival within the margin tags a word for it
+     ("two right of the one you just used", read as a stack's position by the best reading and as the stud's by a
+     rival, said something of the stud). Only a changed *command* counts here (a completion on a stud the command would overlap says
      nothing). An instruction that said nothing of the missing part ("put any sheet on 500104"), and a site
      refusal (overlap, buried panel), are definite answers: "previous" is then the last accepted command, as spec
      section 3 says. With gold tags the layer still gives every intended outcome on every generated split
@@ -137,7 +139,7 @@ BEST_PATH = DecisionSettings(k=1, margin=0.0, act=0.0, recover=1.0, doubt=1.0, q
 #: recipe, by the mean cost over three models trained with seeds 0-2 (``benchmarks/results/decision.md``; a test
 #: checks that they are the recorded choice). Its rule gave ``doubt=1.0``: the doubtful-word check did not lower
 #: the cost there, so it is off by default.
-DEFAULT_SETTINGS = DecisionSettings(k=8, margin=1.5, act=0.3, recover=0.4, doubt=1.0, question=0.2, pending=True,
+DEFAULT_SETTINGS = DecisionSettings(k=8, margin=1.5, act=0.3, recover=0.2, doubt=1.0, question=0.2, pending=True,
                                     half="said", through=True)
 
 
@@ -500,24 +502,39 @@ def interpret_instruction(words: Sequence[str], tagger, history: ActionHistory,
 NOT_UNDERSTOOD = frozenset({"unclear"})
 
 
-def completions(decision: Decision, history: ActionHistory, half: str = "said") -> list[Outcome]:
+def said_tags(decision: Decision, margin: float = 0.0) -> set[str]:
+    """The tags that the decision's reading, or any reading within ``margin`` of the best, gives some word: what
+    the instruction may have said, as far as the layer read it ("two right of the one you just used" read as a
+    stack's position by the best reading and as the stud's by a rival)."""
+    readings = list(decision.readings)
+    best = readings[0].logprob if readings else 0.0
+    said = set(decision.tags)
+    for reading in readings:
+        if reading.logprob >= best - margin:
+            said.update(reading.tags)
+    return said
+
+
+def completions(decision: Decision, history: ActionHistory, half: str = "said", margin: float = 0.0) -> list[Outcome]:
     """The commands an instruction refused as ``undetermined`` may have meant, feasible on the site as ``history``
     leaves it: the panel and the stud its reading determines, and any panel on top of a stack or any stud for the
-    part it does not. Empty when ``half`` (``HALF_UNDERSTOOD``) does not count this refusal."""
+    part it does not. Empty when ``half`` (``HALF_UNDERSTOOD``) does not count this refusal; with ``"said"``, a part
+    counts as said when a reading within ``margin`` of the best tags a word for it (``said_tags``)."""
     if half == "off" or decision.acted or decision.refusal.reason != "undetermined":
         return []
+    said = said_tags(decision, margin)
     ti = TaggedInstruction(decision.words, decision.tags)
     ctx = MappingContext(history.site, history.state, history.last)
     try:
         panels = [resolve_target(ti, ctx)]
     except Refusal:
-        if half == "said" and not ti.has(*TARGET_TAGS):
+        if half == "said" and not said & set(TARGET_TAGS):
             return []  # nothing said about the panel ("any sheet"): nothing to build on
         panels = [p for p in history.state.tops.values() if p is not None]
     try:
         studs = [resolve_stud(ti, ctx)]
     except Refusal:
-        if half == "said" and not ti.has(*DESTINATION_TAGS):
+        if half == "said" and not said & set(DESTINATION_TAGS):
             return []  # nothing said about the stud ("over there")
         studs = list(history.site.stud_ids)
     try:
@@ -589,7 +606,7 @@ def play_episode(instructions: Sequence[Sequence[str]], confidences: Sequence, l
         elif decision.refusal.reason in NOT_UNDERSTOOD:
             unanswered.append((decision, decision.options))
         else:
-            meant = completions(decision, history, settings.half)
+            meant = completions(decision, history, settings.half, settings.margin)
             if meant:
                 unanswered.append((decision, meant))
         decisions.append(decision)

@@ -465,3 +465,23 @@ def test_the_default_settings_are_the_recorded_choice():
     chosen = ast.literal_eval(re.search(r"^chosen=(\{.*\})$", text, re.M).group(1))
     assert chosen == asdict(DEFAULT_SETTINGS)
     assert "field-validation" in text and "field-novel" in text and "field-set" not in text
+
+
+def test_a_part_is_said_when_a_reading_within_the_margin_tags_it():
+    """'half="said"' judges what an undetermined instruction said over the readings the layer considered: the
+    best reading reads "two right of the one you just used" as a stack's position (no stud: nothing said of it),
+    a rival within the margin as the stud's. The instruction then may have meant that panel on any stud where it
+    fits; with no margin, only the best reading counts and it leaves nothing open."""
+    words, best = _wt("the 4x8/width two/Dw_loc1 right/Dw_loc1 of the one you just/Dw_loc2 used/Dw_loc2")
+    rival = ["O", "width", "St_loc1", "St_loc1", "O", "O", "O", "O", "St_loc2", "St_loc2"]
+    assert len(rival) == len(words)
+    history = ActionHistory()
+    decision = decide(words, [(best, math.log(0.6)), (rival, math.log(0.3))], np.zeros((len(words), len(TAGS))),
+                      TAGS, history, DecisionSettings(margin=1.5, act=0.3, recover=0.9, question=0.9))
+    assert not decision.acted and decision.refusal.reason == "undetermined"
+    meant = completions(decision, history, "said", margin=1.5)
+    assert {o[1] for o in meant} == {"500320"} and len({o[2] for o in meant}) > 5
+    assert completions(decision, history, "said", margin=0.0) == []
+    far = decide(words, [(best, math.log(0.9)), (rival, math.log(0.01))], np.zeros((len(words), len(TAGS))),
+                 TAGS, history, DecisionSettings(margin=1.5))
+    assert completions(far, history, "said", margin=1.5) == []

@@ -370,3 +370,38 @@ def test_the_ablation_is_put_together_from_current_rows(tmp_path):
     table = run_field_study(tmp_path, tiny, [])
     assert list(table["model"]) == ["LSTM+char paper"]
     assert "Not run yet with the current corpus and settings: LSTM paper, MiniLM paper" in (tmp_path / "README.md").read_text()
+
+
+def test_the_ablation_scores_a_kept_model_without_training_it_again(tmp_path, capsys, monkeypatch):
+    """``experiment field --keep-models``: a model trained once is kept with its training fingerprint; a later run
+    (here: after the decision layer's settings changed, so the row itself is stale) scores the kept model instead
+    of training it, and a model kept under another fingerprint is trained again."""
+    import json
+
+    from drywall_lab import decision
+    from drywall_lab.nlu import field_study as FS
+
+    tiny = FS.FieldStudySettings(lstm_epochs={"paper": 1, "field": 1}, bert_epochs={"paper": 1, "field": 1},
+                                 train_sizes={"paper": 40, "field": 40}, evaluation_size=8)
+    models = tmp_path / "models"
+    first = FS.run_field_study(tmp_path / "out", tiny, ["LSTM paper"], keep_models=models)
+    assert "LSTM paper: trained" in capsys.readouterr().out
+    kept = models / "lstm-paper"
+    assert (kept / FS.MODEL_STAMP).read_text().strip() == FS.training_fingerprint(tiny)
+    weights = {p.name: p.read_bytes() for p in kept.iterdir() if p.is_file()}
+
+    row_before = json.loads((tmp_path / "out" / "rows" / "lstm-paper.json").read_text())
+    import dataclasses
+
+    monkeypatch.setattr(decision, "DEFAULT_SETTINGS", dataclasses.replace(decision.DEFAULT_SETTINGS, act=0.123))
+    assert FS.study_fingerprint(tiny) != row_before["fingerprint"]  # the row is stale, the model is not
+    again = FS.run_field_study(tmp_path / "out", tiny, ["LSTM paper"], keep_models=models)
+    assert f"LSTM paper: the model kept in {kept}" in capsys.readouterr().out
+    assert {p.name: p.read_bytes() for p in kept.iterdir() if p.is_file()} == weights
+    assert again.loc[0, "train_seconds"] == first.loc[0, "train_seconds"]
+    assert again.loc[0, "test acc_inst"] == first.loc[0, "test acc_inst"]
+
+    (kept / FS.MODEL_STAMP).write_text("another corpus\n")
+    FS.run_field_study(tmp_path / "out", tiny, ["LSTM paper"], keep_models=models)
+    assert "LSTM paper: trained" in capsys.readouterr().out
+    assert (kept / FS.MODEL_STAMP).read_text().strip() == FS.training_fingerprint(tiny)

@@ -154,3 +154,56 @@ def test_generation_is_deterministic_and_small_splits_are_allowed(tmp_path):
     write_jsonl(rows, tmp_path / "v.jsonl")
     with pytest.raises(ValueError, match="unknown field split"):
         FG.generate_field_split("dev")
+
+
+def _occurrences(row: dict, phrase: str) -> list[int]:
+    """Where the words of ``phrase`` start in the row (lower case, punctuation is not a word)."""
+    words, target = [w.lower() for w in row["words"]], phrase.lower().replace(",", " ").split()
+    return [i for i in range(len(words) - len(target) + 1) if words[i:i + len(target)] == target]
+
+
+def test_ruled_out_placements_call_signs_and_labels_are_o(train):
+    """Guidelines 4.7: a placement ruled out ("never mind the top row"), the number of a radio call sign ("team two,
+    this is bravo") and the number of a label ("task #3") carry no tag, and the generator says each of them."""
+    counts = Counter()
+    for row in train:
+        for phrases in FP.PLACEMENT_NEGATED.values():
+            for phrase in phrases:
+                for i in _occurrences(row, phrase):
+                    counts["ruled out"] += 1
+                    assert set(row["tags"][i:i + len(phrase.split())]) == {"O"}, row["text"]
+        words = [w.lower() for w in row["words"]]
+        for i, word in enumerate(words[:-3]):
+            if word in FP.CALL_UNITS and words[i + 2:i + 4] == ["this", "is"]:
+                counts["call sign"] += 1
+                assert row["tags"][i + 1] == "O", row["text"]
+        for i, word in enumerate(words):
+            if re.fullmatch(r"#\d{1,2}", word):
+                counts["label"] += 1
+                assert row["tags"][i] == "O", row["text"]
+    assert min(counts["ruled out"], counts["call sign"], counts["label"]) >= 20, counts
+
+
+def test_context_that_sets_the_placement_is_tagged_and_a_bare_side_names_a_stack(train):
+    """Guidelines 4.7: context that says how this panel goes ("we're doing the top row now, so ...") tags its
+    placement words with the row's placement, and where a key or a line says it is the panel, a side alone is Dw_loc1."""
+    placement_tags = {"vertical_middle": "Vr_md", "horizontal_top": "Hr_top", "horizontal_bottom": "Hr_btm"}
+    seen = Counter()
+    for row in train:
+        if row["register"] != "context":
+            continue
+        for placement, templates in FP.CONTEXT_PLACEMENT.items():
+            for template in templates:
+                phrase = " ".join(w.split("/")[0] for w in template.split())
+                for i in _occurrences(row, phrase):
+                    seen[placement] += 1
+                    tags = {t for w, t in zip(template.split(), row["tags"][i:]) if "/" in w}
+                    assert tags == {placement_tags[placement]}, row["text"]
+    assert min(seen.values()) >= 5 and len(seen) == 3, seen
+    bare = [r for r in train if r["register"] == "list"
+            and re.search(r"\b(what|panel|sheet|board|target)\s*[:=]?\s*(far )?(left|middle|right|centre|center)( one)?\s*[.,;|]",
+                          r["text"].lower())]
+    assert len(bare) >= 20
+    for row in bare:
+        first = next(i for i, w in enumerate(row["words"]) if w.lower() in ("left", "middle", "right", "centre", "center"))
+        assert row["tags"][first] == "Dw_loc1", row["text"]

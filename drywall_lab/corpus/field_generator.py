@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import hashlib
 import random
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
 
@@ -192,6 +192,7 @@ class Pieces:
     ch: Chooser
     meaning: G.Meaning
     read_out_ids: float = 0.0  #: chance that an id is read out digit by digit (radio, speech)
+    bare_stacks: bool = False  #: a stack may be named by its side alone (where a key or a line says it is the panel)
 
     def noun(self) -> Phrase:
         return words_of(self.ch, F.PANEL_NOUNS)
@@ -213,6 +214,10 @@ class Pieces:
         if ref.kind == "same":
             return ch.say(F.TARGET_SAME_TERSE if terse else F.TARGET_SAME, **slots)
         if ref.kind == "absolute":
+            if terse and self.bare_stacks and ch.chance(0.3):  # the side alone: "panel: left", "Middle. Stud 500105."
+                return ch.say(F.STACK_BARE[ref.stack])
+            if not terse and ch.chance(0.15):  # "the one on the right"
+                return ch.say(F.TARGET_SIDE[ref.stack], **slots)
             where = ch.say(F.STACK_WHERE[ref.stack], stack=slots["stack"])
             return ch.say(F.TARGET_STACK_TERSE if terse else F.TARGET_STACK, where=where, **slots)
         if ref.kind == "relative":
@@ -257,7 +262,16 @@ class Pieces:
         raise ValueError(ref)
 
     def placement(self, placement: str | None = None) -> Phrase:
-        return self.ch.say(F.PLACEMENT[placement or self.meaning.placement], stud=words_of(self.ch, F.STUD_NOUNS))
+        """The placement as said; now and then after a placement ruled out ("not up top , centre line")."""
+        said = self.ch.say(F.PLACEMENT[placement or self.meaning.placement], stud=words_of(self.ch, F.STUD_NOUNS))
+        if placement is None and self.ch.chance(0.05):
+            return self.ruled_out() + (parse(self.ch.rng.choice(F.PLACEMENT_NEGATED_LINKS)) + said if said else [])
+        return said
+
+    def ruled_out(self) -> Phrase:
+        """Another placement, ruled out: all O (guidelines 4.7, a negated alternative)."""
+        others = [p for p in F.PLACEMENT_NEGATED if p != self.meaning.placement]
+        return plain(self.ch.rng.choice(F.PLACEMENT_NEGATED[self.ch.rng.choice(others)]))
 
     def placement_sentence(self) -> Phrase | None:
         """A sentence of its own for the placement ("Put it up top."); None for the unsaid default."""
@@ -496,8 +510,9 @@ class Speaker:
 
     def fragment(self) -> Sentences:
         ch = self.ch
-        T, D, P = self.T(True), self.D(True), self.P()
         form = ch.rng.randrange(10)
+        self.p.bare_stacks = form in (0, 2)  # "Left. 500107." / "left, 500107": a stack by its side alone
+        T, D, P = self.T(True), self.D(True), self.P()
         if form == 6 and P:  # the placement first
             return [self.end(P + self.colon() + T + self.comma() + D)]
         if form == 7:  # the stud as the key
@@ -520,8 +535,18 @@ class Speaker:
 
     def listing(self) -> Sentences:
         ch = self.ch
-        T, D, P = self.T(True), self.D(True), self.P()
         form = int(self.form(["0", "1", "2", "3", "4", "5", "7", "8", "9", "10", "~6"]))
+        self.p.bare_stacks = form in (0, 2, 4, 8, 9, 10)  # keyed or one per line: "panel: left"
+        T, D, P = self.T(True), self.D(True), self.P()
+        colon = [punct(":")]
+        if form != 6 and ch.chance(0.25):  # a numbered label first: "task #3 :" (the number is a label, O)
+            label = plain(f"{ch.rng.choice(F.LABEL_NOUNS)} #{ch.rng.randint(1, 12)}") + \
+                (colon if ch.chance(0.5) else plain(ch.rng.choice(["-", "--", "|"])))
+            return [label + sentence if i == 0 else sentence for i, sentence in enumerate(self._listing(form, T, D, P))]
+        return self._listing(form, T, D, P)
+
+    def _listing(self, form: int, T: Phrase, D: Phrase, P: Phrase) -> Sentences:
+        ch = self.ch
         colon = [punct(":")]
         if form == 7:  # numbered steps
             out = [self.end(plain("step 1") + colon + self.pick() + T), self.end(plain("step 2") + colon + self.place()
@@ -569,7 +594,7 @@ class Speaker:
         end = self.w(F.RADIO_ENDS)
         form = int(self.form(["0", "1", "2", "4", "5", "6", "7", "~3"]))
         if form == 5:  # "message follows", the parts split by "break"
-            return [self.end(self.w(F.CALL_SIGNS) + self.comma() + plain("message follows")),
+            return [self.end(self.call_sign() + self.comma() + plain("message follows")),
                     self.end(T() + self.comma() + plain("break") + self.comma() + D() + P()), self.end(end)]
         if form == 6:  # "I say again": the id repeated
             again = self.id_again()
@@ -584,9 +609,10 @@ class Speaker:
             return [self.end(call), self.end(plain(ch.rng.choice(["next task", "task"])) + self.colon() + T() + self.prep()
                                              + D() + P()), self.end(end)]
         if form == 0:
-            return [self.end(call + self.comma() + T() + self.prep() + D() + P() + self.comma() + end)]
+            sign = self.call_sign() + self.comma() if ch.chance(0.3) else []
+            return [self.end(sign + call + self.comma() + T() + self.prep() + D() + P() + self.comma() + end)]
         if form == 4:
-            return [self.end(self.w(F.CALL_SIGNS)), self.end(T() + self.prep() + D() + P() + self.comma() + end)]
+            return [self.end(self.call_sign()), self.end(T() + self.prep() + D() + P() + self.comma() + end)]
         if form == 1:
             return [self.end(T() + plain("to") + D() + self.comma() + P()), self.end(end)]
         if form == 2:
@@ -594,6 +620,15 @@ class Speaker:
                     self.end(end)]
         return [self.end(self.w(F.CALL_SIGNS) + self.comma() + T() + self.prep() + D() + P()),
                 self.end(plain(ch.rng.choice(["over and out", "how copy", "over and out"])))]
+
+    def call_sign(self) -> Phrase:
+        """Who calls whom: a fixed call sign, or a unit with a number ("team two , this is bravo"), all O."""
+        rng = self.ch.rng
+        if self.ch.chance(0.4):
+            return self.w(F.CALL_SIGNS)
+        n = rng.randint(1, 9)
+        return parse(rng.choice(F.CALL_FRAMES).format(unit=rng.choice(F.CALL_UNITS), name=rng.choice(F.CALL_NAMES),
+                                                      n=str(n) if self.ch.chance(0.35) else NUMBER_WORDS[n]))
 
     def non_native(self) -> Sentences:
         ch, T, D, P = self.ch, self.T, self.D, self.P
@@ -641,7 +676,9 @@ class Speaker:
         which = rng.choice(["target", "stud", "placement"]) if self.meaning.target.kind != "none" else "stud"
         if which == "stud" and self.meaning.stud.kind == "none":
             which = "placement"
-        style = rng.randrange(5)
+        style = rng.randrange(6)
+        if style == 5:  # the next sentence takes back one part: "Take the 4x8. Actually no, the 2x8. Hang it on ..."
+            return self.part_taken_back(which, fix)
         if style == 1:  # a whole sentence taken back, then said again right
             T, D, P = self.T(), self.D(), self.P()
             if which == "target":
@@ -686,6 +723,9 @@ class Speaker:
             return [self.end(self.place() + wrong + self.comma() + fix + self.comma() + self.T() + tail + self.prep()
                              + self.D() + self.P())]
         if which == "stud":
+            recount = self.count_corrected(fix) if self.meaning.stud.kind == "relative" and ch.chance(0.5) else None
+            if recount is not None:
+                return [self.end(self.place() + self.T() + self.prep() + recount + self.P())]
             wrong = as_plain(self.p.stud(ch.chance(0.4), abandoned_stud(rng, self.meaning)))
             return [self.end(self.place() + self.T() + self.prep() + wrong + self.comma() + fix + self.comma()
                              + self.D() + tail + self.P())]
@@ -695,8 +735,45 @@ class Speaker:
         return [self.end(self.place() + self.T() + self.prep() + self.D() + wrong + self.comma() + fix + self.comma()
                          + right + tail)]
 
+    def part_taken_back(self, which: str, fix: Phrase) -> Sentences:
+        """One part said, then taken back in a sentence of its own that says only the new part; the rest follows
+        or came before. The abandoned words are O, the new part carries the tags (guidelines 4.7)."""
+        ch, rng = self.ch, self.ch.rng
+        fix = fix + self.comma() if fix else plain(rng.choice(["no", "sorry", "wait"])) + self.comma()
+        if which == "target":
+            wrong = as_plain(self.p.target(ch.chance(0.4), abandoned_target(rng, self.ep, self.meaning)))
+            return [self.end(self.pick() + wrong), self.end(fix + self.T() + self.w(F.CORRECTION_ENDS)),
+                    self.end(self.place() + self.it() + self.prep() + self.D() + self.P())]
+        if which == "stud":
+            wrong = as_plain(self.p.stud(ch.chance(0.4), abandoned_stud(rng, self.meaning)))
+            return [self.end(self.place() + self.T() + self.prep() + wrong),
+                    self.end(fix + self.prep() + self.D() + self.P() + self.w(F.CORRECTION_ENDS))]
+        others = [p for p in F.PLACEMENT if p != self.meaning.placement and p != "vertical_left"]
+        wrong = as_plain(self.p.placement(rng.choice(others)))
+        right = self.P() or plain(rng.choice(["stand it up", "upright", "standing up", "just vertical", "the normal way"]))
+        if ch.chance(0.5):  # the stud last: "... across the top. No, forget the top row; stand it up on 500108."
+            return [self.end(self.T() + wrong), self.end(fix + right + self.prep() + self.D())]
+        return [self.end(self.place() + self.T() + self.prep() + self.D() + wrong), self.end(fix + right)]
+
+    def count_corrected(self, fix: Phrase) -> Phrase | None:
+        """A relative stud said with the wrong count, and only the count said again: "two studs right of 500104 ,
+        wait no , three". The first count is O, the rest of the position keeps its tags; None where the wording
+        has no count word to take back."""
+        ch, ref = self.ch, self.meaning.stud
+        wrong_count = ch.rng.choice([n for n in range(2, 6) if n != ref.count])
+        said = self.p.stud(ch.chance(0.4), replace(ref, count=wrong_count))
+        spellings = {str(wrong_count), NUMBER_WORDS[wrong_count], ORDINAL_WORDS[wrong_count], ORDINAL_DIGITS[wrong_count]}
+        counts = [i for i, t in enumerate(said) if t.tag == "St_loc1" and t.word.lower() in spellings]
+        if len(counts) != 1:
+            return None
+        said[counts[0]] = Token(said[counts[0]].word, "O", "O")
+        again = _number(ch, ref.count, "St_loc1") + plain(ch.rng.choice(["", "", "studs", "places", "over"]))
+        return said + [punct(".") if ch.chance(0.3) else punct(",")] + fix + self.comma() + again
+
     def context(self) -> Sentences:
         ch = self.ch
+        if self.meaning.placement in F.CONTEXT_PLACEMENT and ch.chance(0.4):
+            return self.context_placement()
         context = ch.rng.choice(F.CONTEXT)
         number = str(ch.rng.randint(2, 9)) if ch.chance(0.5) else NUMBER_WORDS[ch.rng.randint(2, 9)]
         reason = parse(context.replace("{n}", number).replace("{sid}", f"5001{ch.rng.randrange(13):02d}"))
@@ -705,6 +782,24 @@ class Speaker:
             return [self.end(reason)] + body
         first = body[0]
         return [reason + self.comma() + self.w(F.CONTEXT_LINKS) + first] + body[1:]
+
+    def context_placement(self) -> Sentences:
+        """Context that sets this panel's placement ("we're doing the top row now, so ..."): its placement words are
+        tagged, and the instruction after it mostly leaves the placement out (guidelines 4.7)."""
+        ch, rng = self.ch, self.ch.rng
+        reason = ch.say(F.CONTEXT_PLACEMENT[self.meaning.placement])
+        form = rng.randrange(3)
+        if form == 0:
+            body = self.place() + self.T() + self.prep() + self.D()
+        elif form == 1:
+            body = self.pick() + self.T() + plain("and") + self.place() + self.it() + self.prep() + self.D()
+        else:
+            body = self.T(True) + self.prep() + self.D(True)
+        if ch.chance(0.25):
+            body += self.comma() + self.P()
+        if ch.chance(0.5):
+            return [self.end(reason), self.end(body)]
+        return [self.end(reason + self.comma() + self.w(F.CONTEXT_LINKS) + body)]
 
     def question(self) -> Sentences:
         ch, T, D, P = self.ch, self.T, self.D, self.P

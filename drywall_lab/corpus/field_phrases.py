@@ -67,7 +67,7 @@ CONTEXT = [
     "we are closing up this bay", "the inspector is coming after lunch", "we need to finish this wall today",
     "the electrician is done here", "we're working left to right", "the bottom is done on this side",
     "that last one looks good", "the tape crew is waiting", "we're short on time", "the plumber signed off",
-    "the insulation is in", "this is the last wall before break", "we're doing the top rows now",
+    "the insulation is in", "this is the last wall before break",
     "I checked the layout", "the foreman wants this section done", "we changed the plan a bit",
     "good job on the last one", "we're behind schedule", "the framing got checked", "this wall is next",
     "we have {n} sheets left", "{n} more to go after this", "it's almost {n} o'clock", "we did {n} already",
@@ -240,6 +240,22 @@ TARGET_STACK = [
     "the top one off the {where}", "the uppermost {noun} on the {where}", "the next {noun} off the {where}",
 ]
 TARGET_STACK_TERSE = ["{where}", "{where}", "top of the {where}", "{noun} from {where}"]
+#: A stack named by its side with no stack noun ("the one on the right", "the panel on the left", as the robot's
+#: refusals suggest): the side words are Dw_loc1.
+TARGET_SIDE = {
+    "left": ["the one on the left/Dw_loc1", "the {noun} on the left/Dw_loc1", "one from the left/Dw_loc1",
+             "the one at the far/Dw_loc1 left/Dw_loc1", "the {noun} furthest/Dw_loc1 left/Dw_loc1", "the left/Dw_loc1 one"],
+    "middle": ["the one in the middle/Dw_loc1", "the {noun} in the middle/Dw_loc1", "one from the middle/Dw_loc1",
+               "the one in the centre/Dw_loc1", "the middle/Dw_loc1 one", "the centre/Dw_loc1 one"],
+    "right": ["the one on the right/Dw_loc1", "the {noun} on the right/Dw_loc1", "one from the right/Dw_loc1",
+              "the one at the far/Dw_loc1 right/Dw_loc1", "the {noun} furthest/Dw_loc1 right/Dw_loc1", "the right/Dw_loc1 one"],
+}
+#: A stack named by its side alone, where the slot says it is the panel ("panel: left", "Middle. Stud 500105."):
+#: the side word is Dw_loc1 (guidelines 4.7, key-value and list styles).
+STACK_BARE = {"left": ["left/Dw_loc1", "left/Dw_loc1", "far/Dw_loc1 left/Dw_loc1", "leftmost/Dw_loc1", "left/Dw_loc1 one"],
+              "middle": ["middle/Dw_loc1", "middle/Dw_loc1", "centre/Dw_loc1", "center/Dw_loc1", "middle/Dw_loc1 one"],
+              "right": ["right/Dw_loc1", "right/Dw_loc1", "far/Dw_loc1 right/Dw_loc1", "rightmost/Dw_loc1",
+                        "right/Dw_loc1 one"]}
 #: Where each stack is, as a phrase with the position words tagged Dw_loc1 ({stack} is a stack noun).
 STACK_WHERE = {
     "left": [
@@ -373,6 +389,10 @@ PLACEMENT = {
         "on its edge", "plumb", "the usual way", "edge on the left side of the {stud}", "long way up",
         "standing", "up and down", "portrait", "portrait style", "stood up", "on the stud's left edge",
         "stood up on its end", "standing up like always", "left edge on the {stud}", "edge on the left of the {stud}",
+        # the default named as the robot names it (spec section 4, and the robot's own questions): still all O
+        "on the left line", "on its left line", "left line", "on the left line of the {stud}", "edge on the left line",
+        "left edge on the left line", "default , left line", "the default", "default", "on the {stud}'s left line",
+        "lined up on the left line", "the normal left line",
     ],
     "vertical_middle": [
         "on the centre/Vr_md line/Vr_md", "on the center/Vr_md line/Vr_md", "on/Vr_md centre/Vr_md", "on/Vr_md center/Vr_md",
@@ -419,6 +439,43 @@ PLACEMENT = {
         "~tight to the bottom/Hr_btm plate/Hr_btm", "~along the bottom/Hr_btm plate/Hr_btm", "~down on the bottom/Hr_btm plate/Hr_btm",
     ],
 }
+#: A placement ruled out ("not on the centre line", "forget the top row"): all O (guidelines 4.7, a negated
+#: alternative), said before the placement meant, which may be the unsaid default.
+PLACEMENT_NEGATED = {
+    "vertical_left": ["not on the left line", "not standing up", "not upright", "not the usual way", "not the default"],
+    "vertical_middle": ["not on the centre line", "not centred", "without the centre line",
+                        "forget the centre line", "not on centre", "never mind the middle line", "not on the middle line"],
+    "horizontal_top": ["not up top", "forget the top", "forget the top row", "never mind the top row",
+                       "not in the top row", "not the upper course", "skip the top row"],
+    "horizontal_bottom": ["not down low", "forget the bottom", "forget the bottom row",
+                          "never mind the bottom row", "not in the bottom row", "not the lower course",
+                          "skip the bottom row"],
+}
+#: What follows a ruled-out placement ("not up top , just standing up"); empty or O words.
+PLACEMENT_NEGATED_LINKS = [",", ",", ", just", ", but", ", instead", ", simply", ". this one", ", only"]
+#: Context said first that does set this panel's placement ("we're doing the top row now, so ..."): the
+#: placement words in it are tagged (guidelines 4.7); the instruction after it may leave the placement out.
+CONTEXT_PLACEMENT = {
+    "vertical_middle": ["everything goes on the centre/Vr_md line/Vr_md on this wall", "this wall we do centred/Vr_md",
+                        "we're splitting/Vr_md the studs on this one", "these go on/Vr_md centre/Vr_md today"],
+    "horizontal_top": ["we're doing the top/Hr_top row/Hr_top now", "we're on the top/Hr_top course/Hr_top now",
+                       "time for the top/Hr_top row/Hr_top", "this one is for the upper/Hr_top row/Hr_top",
+                       "we're starting the top/Hr_top course/Hr_top", "now we work up top/Hr_top",
+                       "the scaffold is up so we go high/Hr_top"],
+    "horizontal_bottom": ["we're doing the bottom/Hr_btm row/Hr_btm now", "we're on the bottom/Hr_btm course/Hr_btm now",
+                          "time for the bottom/Hr_btm row/Hr_btm", "this one is for the lower/Hr_btm row/Hr_btm",
+                          "we're starting the bottom/Hr_btm course/Hr_btm", "now we work down low/Hr_btm",
+                          "no scaffold yet so we stay low/Hr_btm"],
+}
+#: Radio call signs built from a unit and a number ("team two , this is bravo"): every word O, the number too.
+CALL_UNITS = ["crew", "team", "unit", "robot", "bot", "lift", "truck", "gang", "squad", "car", "mobile", "arm"]
+CALL_NAMES = ["alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "kilo", "lima", "mike", "oscar", "tango",
+              "victor", "base", "control", "site office", "the gate", "ops", "the foreman", "supervisor"]
+CALL_FRAMES = ["{unit} {n} , this is {name}", "{name} to {unit} {n}", "{unit} {n} , {name}", "{name} calling {unit} {n}",
+               "{unit} {n} from {name}", "this is {name} for {unit} {n}"]
+#: A numbered label before a list or key-value instruction ("task #3 :"): the number is a label, O.
+LABEL_NOUNS = ["task", "job", "work order", "card", "entry", "line", "order", "step"]
+
 #: Placements that cannot be said without a verb-free phrase ("up top" reads fine everywhere).
 PLACEMENT_SENTENCE = ["put it {p}", "it goes {p}", "{p}", "{p} please", "make it {p}", "do it {p}",
                       "this one {p}", "hang it {p}", "set it {p}", "want it {p}", "and {p}", "{p} , yeah",

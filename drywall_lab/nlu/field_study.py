@@ -17,7 +17,10 @@ the settings); the shipped default tagger's settings are ``DEFAULT_FIELD_TAGGER`
 in ``rows/<model>.json`` with a fingerprint of what it depends on (the corpus generator, the training corpora,
 the study's and the decision layer's settings, the field sets), so that the six models can be trained in
 separate runs, even at the same time (``--models``), and the table is put together from the rows whose
-fingerprint is current; a row left from an older corpus or setting is never shown.
+fingerprint is current; a row left from an older corpus or setting is never shown. The trained models are kept
+too (``--keep-models``, by default ``build/field_study``) with a fingerprint of what their training depends on,
+so that a change that only touches scoring (the decision layer's thresholds, a field set) re-scores the rows
+without training them again.
 """
 from __future__ import annotations
 
@@ -123,16 +126,24 @@ def score_tagger(tagger: Tagger, settings: FieldStudySettings) -> dict:
     return row
 
 
-def study_fingerprint(settings: FieldStudySettings) -> str:
-    """A hash of what a row of the ablation depends on besides the code of the taggers and the IM: the field
-    corpus generator, the training corpora, the study's settings, the decision layer's defaults and the field sets."""
+def training_fingerprint(settings: FieldStudySettings) -> str:
+    """A hash of what a model of the ablation depends on besides the code of the taggers: the field corpus
+    generator, the training corpora, the study's settings and the shipped recipe."""
     from drywall_lab.corpus.field_generator import generator_fingerprint
-    from drywall_lab.decision import DEFAULT_SETTINGS
-    from drywall_lab.field import FIELD_DIR
     from drywall_lab.splits import CORPORA
 
-    digest = hashlib.sha256(json.dumps([generator_fingerprint(), CORPORA, repr(settings), asdict(DEFAULT_SETTINGS),
-                                        DEFAULT_FIELD_TAGGER], sort_keys=True, default=str).encode())
+    return hashlib.sha256(json.dumps([generator_fingerprint(), CORPORA, repr(settings), DEFAULT_FIELD_TAGGER],
+                                     sort_keys=True, default=str).encode()).hexdigest()
+
+
+def study_fingerprint(settings: FieldStudySettings) -> str:
+    """A hash of what a row of the ablation depends on besides the code of the taggers and the IM: what its model
+    depends on (``training_fingerprint``), the decision layer's defaults and the field sets."""
+    from drywall_lab.decision import DEFAULT_SETTINGS
+    from drywall_lab.field import FIELD_DIR
+
+    digest = hashlib.sha256(json.dumps([training_fingerprint(settings), asdict(DEFAULT_SETTINGS)],
+                                       sort_keys=True, default=str).encode())
     for directory in (FIELD_DIR, SHARED_FIELD):
         for name in ("instructions.jsonl", "gold.jsonl"):
             if (directory / name).is_file():
@@ -140,15 +151,42 @@ def study_fingerprint(settings: FieldStudySettings) -> str:
     return digest.hexdigest()
 
 
+def _slug(name: str) -> str:
+    return re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-")
+
+
 def _row_path(out: Path, name: str) -> Path:
-    return out / "rows" / (re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-") + ".json")
+    return out / "rows" / (_slug(name) + ".json")
+
+
+MODEL_STAMP = "study.fingerprint"  #: in a kept model's directory: the training fingerprint it was trained under
+
+
+def trained_model(tagger: Tagger, train: list[dict], validation: list[dict], seed: int, kept: Path | None,
+                  fingerprint: str) -> tuple[Tagger, bool]:
+    """The tagger trained on ``train``, or the model kept in ``kept`` when it was trained under ``fingerprint``
+    (``training_fingerprint``); a model trained here is kept there. Returns the tagger and whether it was loaded."""
+    from drywall_lab.nlu.base import load_tagger
+
+    stamp = kept / MODEL_STAMP if kept is not None else None
+    if stamp is not None and stamp.is_file() and stamp.read_text(encoding="utf-8").strip() == fingerprint:
+        return load_tagger(kept), True
+    tagger.fit(train, validation, seed=seed, progress=False)
+    if kept is not None:
+        if stamp.is_file():
+            stamp.unlink()  # never a stamp beside weights it does not describe, even if saving fails half way
+        tagger.save(kept)
+        stamp.write_text(fingerprint + "\n", encoding="utf-8")
+    return tagger, False
 
 
 def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = None,
-                    models: list[str] | None = None) -> pd.DataFrame:
+                    models: list[str] | None = None, keep_models: Path | str | None = None) -> pd.DataFrame:
     """Train and score the taggers named in ``models`` (default: all six, ``study_taggers``), keep each row in
     ``rows/``, and write ``ablation.csv`` and ``README.md`` to ``out_dir`` from every row whose fingerprint is
-    current (the models not run yet are named in the README). Returns the table."""
+    current (the models not run yet are named in the README). With ``keep_models``, each trained model is kept in
+    a folder of it, and a model kept there under the current ``training_fingerprint`` is scored without training
+    it again. Returns the table."""
     from drywall_lab.splits import CORPORA, split_rows, training_rows
 
     settings = settings or FieldStudySettings.full()
@@ -159,7 +197,7 @@ def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = N
         raise ValueError(f"unknown model(s) {', '.join(unknown)}; the study's models are: {', '.join(names)}")
     out = Path(out_dir)
     (out / "rows").mkdir(parents=True, exist_ok=True)
-    fingerprint = study_fingerprint(settings)
+    fingerprint, trained_under = study_fingerprint(settings), training_fingerprint(settings)
     machine = describe_machine()
     started = time.perf_counter()
     for name, corpus, kind, tagger in study:
@@ -168,7 +206,9 @@ def run_field_study(out_dir: Path | str, settings: FieldStudySettings | None = N
         validation_split = CORPORA[corpus][1]
         train = training_rows(corpus)[: settings.train_sizes[corpus]]
         validation = split_rows(validation_split)[: settings.evaluation_size]
-        tagger.fit(train, validation, seed=settings.seed, progress=False)
+        kept = Path(keep_models) / _slug(name) if keep_models is not None else None
+        tagger, loaded = trained_model(tagger, train, validation, settings.seed, kept, trained_under)
+        print(f"{name}: {'the model kept in ' + str(kept) if loaded else 'trained'}", flush=True)
         row = {"model": name, "kind": kind, "corpus": corpus, "n_train": len(train),
                "epochs": tagger.training_info.get("epochs"), "train_seconds": tagger.training_info.get("wall_seconds")}
         row.update(score_tagger(tagger, settings))

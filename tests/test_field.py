@@ -330,6 +330,18 @@ def test_read_ablation(tmp_path):
     (study / "README.md").write_text("- wall time: 3.0 min\n")
     table, note = read_ablation(study)
     assert table.loc["LSTM paper", "test acc_task"] == 1.0 and "1 models" in note and "wall time: 3.0 min" in note
+    assert "Out of date" not in note  # no kept rows: nothing to compare
+    # a kept row from another corpus or other settings is named as out of date; a current one is not
+    import json
+
+    from drywall_lab.nlu.field_study import FieldStudySettings, study_fingerprint
+
+    (study / "rows").mkdir()
+    (study / "rows" / "lstm-paper.json").write_text(json.dumps({"fingerprint": "old", "row": {"model": "LSTM paper"}}))
+    assert "Out of date: the rows of LSTM paper were made" in read_ablation(study)[1]
+    current = study_fingerprint(FieldStudySettings.full())
+    (study / "rows" / "lstm-paper.json").write_text(json.dumps({"fingerprint": current, "row": {"model": "LSTM paper"}}))
+    assert "Out of date" not in read_ablation(study)[1]
 
 
 def test_the_field_corpus_trains_on_both_training_splits():

@@ -267,4 +267,21 @@ def read_ablation(study_dir: Path | str | None = None) -> tuple[pd.DataFrame | N
     readme = study_dir / "README.md"
     wall = next((line for line in readme.read_text(encoding="utf-8").splitlines() if "wall time" in line), "") \
         if readme.is_file() else ""
-    return table, f"{path.relative_to(study_dir.parent.parent)}: {len(table)} models{(', ' + wall.strip('- ')) if wall else ''}."
+    note = f"{path.relative_to(study_dir.parent.parent)}: {len(table)} models{(', ' + wall.strip('- ')) if wall else ''}."
+    stale = stale_rows(study_dir)
+    if stale:
+        note += (f" Out of date: the rows of {', '.join(stale)} were made with another field corpus or other settings "
+                 "than the current ones (`python -m drywall_lab experiment field` runs them again).")
+    return table, note
+
+
+def stale_rows(study_dir: Path, settings: FieldStudySettings | None = None) -> list[str]:
+    """The models whose kept row (``rows/*.json``) has another fingerprint than ``study_fingerprint(settings)``
+    (the full study by default): the table shows them, but they no longer describe the current corpus or settings."""
+    current = study_fingerprint(settings or FieldStudySettings.full())
+    stale = []
+    for path in sorted((Path(study_dir) / "rows").glob("*.json")):
+        kept = json.loads(path.read_text(encoding="utf-8"))
+        if kept.get("fingerprint") != current:
+            stale.append(kept.get("row", {}).get("model", path.stem))
+    return stale

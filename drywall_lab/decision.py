@@ -139,7 +139,7 @@ BEST_PATH = DecisionSettings(k=1, margin=0.0, act=0.0, recover=1.0, doubt=1.0, q
 #: recipe, by the mean cost over three models trained with seeds 0-2 (``benchmarks/results/decision.md``; a test
 #: checks that they are the recorded choice). Its rule gave ``doubt=1.0``: the doubtful-word check did not lower
 #: the cost there, so it is off by default.
-DEFAULT_SETTINGS = DecisionSettings(k=8, margin=1.5, act=0.3, recover=0.2, doubt=1.0, question=0.2, pending=True,
+DEFAULT_SETTINGS = DecisionSettings(k=8, margin=1.5, act=0.5, recover=0.2, doubt=1.0, question=0.2, pending=True,
                                     half="said", through=True)
 
 
@@ -165,6 +165,12 @@ class Reading:
     @property
     def outcome(self) -> Outcome:
         return outcome_of(self.interpretation)
+
+    @property
+    def read_tags(self) -> list[str]:
+        """The tags as the rules read them: a word of punctuation only, a stud spacing, or a word a change of mind took
+        back, is ``O`` (``TaggedInstruction``); the checks of a reading against its own words look at these."""
+        return self.interpretation.tags
 
     @property
     def probability(self) -> float:
@@ -350,7 +356,7 @@ def lying_unread(outcome: Outcome, words: Sequence[str], tags: Sequence[str]) ->
     None otherwise. The guidelines tag the row words of a lying panel, never the lying word itself."""
     if outcome[0] != "command" or any(tag in PLACEMENT_TAGS for tag in tags):
         return None
-    lying = W.lying_words(words)
+    lying = W.lying_words(words, tags)
     if not lying:
         return None
     why = f"the panel stands upright by default, but {W.quote([words[i] for i in lying])} says it lies"
@@ -378,7 +384,7 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
     best = readings[0]
     # A rival must say its placement: "lol" tagged Hr_btm is no reading of the words (step 1).
     within = [best] + [r for r in readings[1:] if r.logprob >= best.logprob - settings.margin
-                       and (not settings.word_checks or placement_words_say_it(words, r.tags))]
+                       and (not settings.word_checks or placement_words_say_it(words, r.read_tags))]
     mass = _mass(readings)
     rival_commands = list(dict.fromkeys(r.outcome for r in within if r.outcome[0] == "command"))
 
@@ -399,9 +405,9 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         if others:
             return finish(best, "ask", "two readings give different commands",
                           Refusal("unclear", question_between(best.outcome, others[0])), [best.outcome, others[0]])
-        checked = (two_meanings(best.outcome, words, best.tags, history)
-                   or placement_unsaid(best.outcome, words, best.tags, history, interpret)
-                   or lying_unread(best.outcome, words, best.tags)
+        checked = (two_meanings(best.outcome, words, best.read_tags, history)
+                   or placement_unsaid(best.outcome, words, best.read_tags, history, interpret)
+                   or lying_unread(best.outcome, words, best.read_tags)
                    if settings.word_checks else None)
         if checked is not None:
             why, question, options = checked

@@ -122,6 +122,26 @@ def test_untagged_count_before(markup, index):
     assert W.untagged_count_before(ti.words, ti.tags, tag) == index
 
 
+@pytest.mark.parametrize("tag, words, says", [
+    ("Hr_btm", ["bottom-row"], True), ("Hr_top", ["top-course"], True), ("Vr_md", ["centre-line"], True),
+    ("Vr_md", ["c-l"], True), ("Hr_btm", ["row"], False), ("Vr_md", ["left-line"], False), ("Hr_top", ["bottom-row"], False),
+])
+def test_a_hyphenated_placement_word_says_its_placement(tag, words, says):
+    """ "a bottom-row sheet": the row word inside a compound says the row (the decision layer's word checks)."""
+    assert W.says_placement(tag, words) is says
+
+
+def test_a_lying_word_far_from_the_instruction_is_a_story():
+    """ "on the last job we did every wall sideways anyway the plasterboard from ..." says nothing of how this panel
+    goes: 'sideways' is more than ``LYING_REACH`` words from every tagged word."""
+    story = "on the last job we did every wall sideways anyway the plasterboard from the left/Dw_loc1 pile on 500101/ID_stud"
+    near = "the 4/width by 6/length lying down at stud 500100/ID_stud"
+    for markup, said in ((story, []), (near, ["lying"])):
+        words, tags = _wt(markup)
+        assert [words[i] for i in W.lying_words(words, tags)] == said
+        assert [words[i] for i in W.lying_words(words)] == [w for w in words if w in ("sideways", "lying")]
+
+
 def test_ids_in_keeps_order_and_drops_repeats():
     assert W.ids_in(["500107,", "stud", "#500103", "500107"]) == ["500107", "500103"]
 
@@ -180,6 +200,10 @@ TARGETS = [
     ("the panel two/Dw_loc1 places/Dw_loc1 to/Dw_loc1 the/Dw_loc1 left/Dw_loc1 of 500302/Dw_loc2", (), "500320"),
     ("the panel left/Dw_loc1 of the previous/Dw_loc2 one", (("500322", "500100", "vertical_left"),), "500321"),
     ("a panel off the pile right/Dw_loc1 of 500300's/Dw_loc2", (), "500321"),  # a possessive id
+    # an anchor that only a pointing word names is the previous panel's stack (guidelines 4.7)
+    ("the pile left/Dw_loc1 of the pallet that/Dw_loc2 one came/Dw_loc2 from", (("500322", "500100", "vertical_left"),),
+     "500321"),
+    ("the one right/Dw_loc1 of that/Dw_loc2 one", (("500320", "500100", "vertical_left"),), "500321"),
     ("take 500311's/ID_wall twin", (), "500311"),
     ("job card #4/width : a regular/dim panel", (), "500320"),  # '#4' is the card's number, not a size
     ("it is the one left/Dw_loc1 of 500301/Dw_loc2", (), "500320"),  # "one" untagged: the generic noun
@@ -315,6 +339,13 @@ STUDS = [
      (("500320", "500104", "vertical_left"),), "500104"),
     ("the stud twelve/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of 500112/St_loc2", (), "500100"),
     ("on 500106's/ID_stud centre line", (), "500106"),
+    # an anchor that only a pointing word names is the previous stud (guidelines 4.7)
+    ("two/St_loc1 studs right/St_loc1 of that/St_loc2 one", (("500320", "500104", "vertical_left"),), "500106"),
+    ("three/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of where/St_loc2 you put it",
+     (("500320", "500107", "vertical_left"),), "500104"),
+    ("one/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of where/St_loc2 that one went", (("500320", "500104", "vertical_left"),), "500105"),
+    # "1" after a word that points back is the noun, as a phone message writes "one"
+    ("2/St_loc1 studs left/St_loc1 of the last/St_loc2 1/St_loc2", (("500320", "500105", "vertical_left"),), "500103"),
 ]
 
 
@@ -332,6 +363,7 @@ STUD_REFUSALS = [
     ("the stud four/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of 500110/St_loc2", (), "off_the_end"),
     ("the 14th/St_loc1 stud", (), "off_the_end"),
     ("the same/St_loc1 stud as the previous/St_loc2 one", (), "no_history"),
+    ("two/St_loc1 studs right/St_loc1 of that/St_loc2 one", (), "no_history"),  # nothing to point back at
     ("the stud next to 500104/St_loc2", (), "undetermined"),
     ("the stud near/St_loc1 500104/St_loc2", (), "undetermined"),
     # a count or ordinal the position rules cannot place is refused, never dropped
@@ -407,10 +439,13 @@ def test_placement(markup, placement):
 
 
 def test_two_placements_are_refused():
+    """Two placements with no correction between them; after "no" only the bottom row counts (guidelines 4.7)."""
     with pytest.raises(Refusal) as info:
-        resolve_placement(tagged("in the top/Hr_top row/Hr_top , no , the bottom/Hr_btm row/Hr_btm"))
+        resolve_placement(tagged("in the top/Hr_top row/Hr_top and the bottom/Hr_btm row/Hr_btm"))
     assert info.value.reason == "undetermined"
     assert "'top row' and 'bottom row'" in info.value.message
+    corrected = tagged("in the top/Hr_top row/Hr_top , no , the bottom/Hr_btm row/Hr_btm")
+    assert resolve_placement(corrected) is Placement.HORIZONTAL_BOTTOM
 
 
 # --- the whole corpus with gold tags ----------------------------------------------------------------
@@ -531,6 +566,132 @@ def test_coreference_tags_are_read_as_o():
     words, tags = _wt("the full-size/dim drywall on stud 500101/ID_stud")
     tags = ["Trg" if w == "drywall" else ("Dst" if w == "stud" else t) for w, t in zip(words, tags)]
     assert interpret(words, tags).command.drywall_id == "500320"
+
+
+# --- the stud spacing is no placement ---------------------------------------------------------------------
+@pytest.mark.parametrize("text, spacing", [
+    ("the studs are 16 in on centre", ["16", "in", "on", "centre"]),
+    ("studs at sixteen inches on center here", ["sixteen", "inches", "on", "center"]),
+    ("framed 24 o.c.", ["24", "o.c."]),
+    ("it's sixteen-inch centres", ["sixteen-inch", "centres"]),
+    ("the 4 by 8 on centre of 500104", []),  # a panel size: the placement
+    ("500104 on centre", []),  # an id
+    ("the 12th stud on centre", []),  # an ordinal
+])
+def test_stud_spacing(text, spacing):
+    words = text.split()
+    assert [words[i] for i in W.stud_spacing(words)] == spacing
+
+
+def test_the_stud_spacing_is_read_as_o():
+    """Guidelines 4.7: "16 in on centre" says how the wall is framed; tagged Vr_md it still puts no panel on a centre line."""
+    words, tags = _raw("walls are sixteen on/Vr_md centre/Vr_md , sheet 500320/ID_wall on the leftmost/St_loc1 stud")
+    result = interpret(words, tags)
+    assert result.command.placement is Placement.VERTICAL_LEFT
+    assert result.trace.steps[0].rule == "R0 stud spacing" and "'sixteen on centre'" in result.trace.steps[0].conclusion
+    words, tags = _raw("the 4/width by 8/length on/Vr_md centre/Vr_md of 500104/ID_stud")
+    assert interpret(words, tags).command.placement is Placement.VERTICAL_MIDDLE
+
+
+@pytest.mark.parametrize("split", ALL_SPLITS)
+def test_gold_tags_never_tag_a_stud_spacing(split):
+    spaced = [row["id"] for row in split_rows(split) for i in W.stud_spacing(row["words"]) if row["tags"][i] != "O"]
+    assert not spaced, spaced[:5]
+
+
+# --- a change of mind: the final intention counts (im/correction.py) -------------------------------------
+def _raw(markup: str) -> tuple[list[str], list[str]]:
+    """Words (punctuation too, as a tagger sees it) and tags as written, before the IM reads them (``_wt`` gives the
+    tags as read)."""
+    tokens = parse(markup)
+    return [t.word for t in tokens], [t.tag if t.is_word else "O" for t in tokens]
+
+
+CORRECTED = [
+    # the whole position said again with another ordinal, or another count and side
+    ("the 4/width by 8/length on the second/St_loc1 stud from/St_loc1 the/St_loc1 right/St_loc1 , no , the "
+     "fourth/St_loc1 from/St_loc1 the/St_loc1 right/St_loc1", (), ("500320", "500109", "vertical_left")),
+    ("a full/dim sheet two/St_loc1 studs right/St_loc1 of 500109/St_loc2 hmm no three/St_loc1 studs to/St_loc1 "
+     "the/St_loc1 left/St_loc1 of 500109/St_loc2", (), ("500320", "500106", "vertical_left")),
+    # only the count said again: the side and the anchor stay
+    ("full/dim sheet 2/St_loc1 studs right/St_loc1 of 500104/St_loc2 wait no 3/St_loc1", (), ("500320", "500107", "vertical_left")),
+    ("the third/St_loc1 stud from/St_loc1 the/St_loc1 right/St_loc1 sorry fifth/St_loc1 , the 2x8/width", (),
+     ("500321", "500108", "vertical_left")),
+    # only the anchor said again
+    ("the 2x8/width one/St_loc1 right/St_loc1 of 500104/St_loc2 , sorry , of 500106/St_loc2", (), ("500321", "500107", "vertical_left")),
+    # a stack, an id, a size, a placement said again
+    ("from the right/Dw_loc1 pile scratch that the left/Dw_loc1 pile on 500103/ID_stud", (), ("500320", "500103", "vertical_left")),
+    ("the 2x8/width on 500101/ID_stud no I mean 500100/ID_stud", (), ("500321", "500100", "vertical_left")),
+    ("the 4/width by 6/length , actually a full/dim one , on 500104/ID_stud", (), ("500320", "500104", "vertical_left")),
+    ("500320/ID_wall on 500104/ID_stud up/Hr_top top/Hr_top oops centre/Vr_md line/Vr_md", (), ("500320", "500104", "vertical_middle")),
+    # an upright word right after the correction says the default
+    ("500320/ID_wall on 500104/ID_stud up/Hr_top top/Hr_top no wait standing up", (), ("500320", "500104", "vertical_left")),
+    # a position said again as an id
+    ("the 2x8/width on the last/St_loc1 stud actually 500105/ID_stud", (), ("500321", "500105", "vertical_left")),
+    # a negated alternative, before or after the one meant
+    ("the right/Dw_loc1 pile , not the left/Dw_loc1 , on 500104/ID_stud", (), ("500322", "500104", "vertical_left")),
+    ("not 500321/ID_wall , 500322/ID_wall on 500104/ID_stud", (), ("500322", "500104", "vertical_left")),
+    ("the 2x8/width on 500105/ID_stud , not on 500104/ID_stud", (), ("500321", "500105", "vertical_left")),
+    # "not that" is a correction, not a negation of what follows
+    ("the 4x8/width , not that , the 2x8/width on 500104/ID_stud", (), ("500321", "500104", "vertical_left")),
+]
+
+
+@pytest.mark.parametrize("markup, history, expected", CORRECTED)
+def test_only_the_final_intention_counts(markup, history, expected):
+    """Guidelines 4.7: a tagger that tagged the abandoned words too does not lead the IM to the abandoned command."""
+    words, tags = _raw(markup)
+    h = ActionHistory.from_commands([dict(zip(("drywall_id", "stud_id", "placement"), c)) for c in history])
+    result = interpret(words, tags, h)
+    assert result.command is not None, result.summary()
+    assert (result.command.drywall_id, result.command.stud_id, result.command.placement.value) == expected
+    step = result.trace.steps[0]
+    assert (step.stage, step.rule) == ("reading", "R0 final intention") and (" taken back by " in step.conclusion or " ruled out by " in step.conclusion)
+
+
+@pytest.mark.parametrize("markup, reason", [
+    # a tagged word five words after the correction is no correction: the reason for it ("bottom of the pile")
+    ("500310/ID_wall across the top/Hr_top of 500100/ID_stud wait that one is at the bottom/Hr_btm of the pile",
+     "undetermined"),
+    # without correction words the two counts stay two counts
+    ("the 4x8/width second/St_loc1 from/St_loc1 the/St_loc1 right/St_loc1 fourth/St_loc1 from/St_loc1 the/St_loc1 "
+     "right/St_loc1", "undetermined"),
+])
+def test_what_no_correction_takes_back_is_still_refused(markup, reason):
+    words, tags = _raw(markup)
+    result = interpret(words, tags)
+    assert result.refusal is not None and result.refusal.reason == reason, result.summary()
+    assert not TaggedInstruction(words, tags).taken_back
+
+
+@pytest.mark.parametrize("markup", [
+    "why is the 2x8/width not on 500104/ID_stud yet",  # the only stud said: no alternative ruled out
+    "the 2x8/width on 500104/ID_stud , not upright but on the centre/Vr_md line/Vr_md",  # the negation is of 'upright'
+    "the 2x8/width on 500104/ID_stud , don't forget the centre/Vr_md line/Vr_md",  # a double negation
+    "not , 500320/ID_wall on 500104/ID_stud",  # punctuation ends what a negation rules out
+])
+def test_a_negation_rules_out_only_an_alternative(markup):
+    words, tags = _raw(markup)
+    assert TaggedInstruction(words, tags).taken_back == {}
+    assert interpret(words, tags).command is not None
+
+
+def test_the_trace_names_what_a_correction_took_back():
+    words, tags = _raw("from the right/Dw_loc1 pile scratch that the left/Dw_loc1 pile on 500103/ID_stud")
+    result = interpret(words, tags)
+    assert result.trace.steps[0].conclusion.startswith("'right' taken back by 'scratch that'")
+    assert result.tags[words.index("right")] == "O" and result.tags[words.index("left")] == "Dw_loc1"
+
+
+@pytest.mark.parametrize("split", ALL_SPLITS)
+def test_gold_tags_take_nothing_back_that_matters(split):
+    """The guidelines tag only the final intention, so the rule never changes a gold reading's outcome (the gold-tag
+    tests of every split check the outcomes); here: what it takes back from gold tags is a word said twice."""
+    for row in split_rows(split):
+        ti = TaggedInstruction(row["words"], row["tags"])
+        for i in ti.taken_back:
+            assert any(W.normalise(ti.words[j]) == W.normalise(row["words"][i]) for j in range(i + 1, len(ti.words))
+                       if ti.tags[j] == row["tags"][i]), (row["id"], row["text"])
 
 
 # --- the action history ----------------------------------------------------------------------------
@@ -787,3 +948,27 @@ def test_field_target_readings(markup, panel):
 
 def test_an_eight_footer_is_ambiguous():
     assert _after_one("an eight-footer/length on stud 500100/ID_stud up top/Hr_top")["refusal"] == "ambiguous_size"
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.sampled_from(VOCABULARY + ["no", "wait", "not", "sorry", "scratch", "that", "actually", "I", "mean",
+                                              "forget", "never", "mind", ","]), max_size=25).flatmap(
+    lambda words: st.tuples(st.just(words), st.lists(st.sampled_from(COREF_TAGS), min_size=len(words),
+                                                     max_size=len(words)))))
+def test_a_correction_only_ever_reads_tags_as_o(words_tags):
+    """Whatever the words and tags: only tagged words are taken back, each by words of a correction that stand after
+    it or of a negation that stand before it, and an instruction without those words keeps every tag."""
+    from drywall_lab.im.correction import CORRECTION_CUES, NEGATIONS, taken_back
+
+    words, tags = words_tags
+    back = taken_back(words, tags)
+    cues = {" ".join(c) for c in CORRECTION_CUES + NEGATIONS}
+    for i, cue in back.items():
+        assert tags[i] not in ("O", "Trg", "Dst")
+        said = tuple(W.normalise(w) for w in cue.split())
+        assert " ".join(said) in cues
+        assert cue.split()[0] in (words[i + 1:] if said in CORRECTION_CUES else words[:i])
+    if {c[0] for c in CORRECTION_CUES + NEGATIONS}.isdisjoint(W.normalise(w) for w in words):
+        assert back == {}
+    ti = TaggedInstruction(words, tags)
+    assert all(t == "O" for i, t in enumerate(ti.tags) if i in back)

@@ -301,7 +301,21 @@ def abandoned_target(rng: random.Random, ep: G.Episode, meaning: G.Meaning) -> G
 
 
 def abandoned_stud(rng: random.Random, meaning: G.Meaning) -> G.StudRef:
-    stud = meaning.expected["stud_id"]
+    """A different stud the worker names first and then takes back: mostly an id; a position said whole with another
+    count or side ("the second from the right , no , the fourth from the right"; "two right of 500109 , no , three left
+    of 500109"); or an end of the wall."""
+    stud, ref = meaning.expected["stud_id"], meaning.stud
+    choice = rng.random()
+    if ref.kind == "relative" and choice < 0.35:
+        if rng.random() < 0.5:
+            return replace(ref, direction="left" if ref.direction == "right" else "right")
+        return replace(ref, count=rng.choice([n for n in range(1, 5) if n != ref.count]))
+    if ref.kind == "from_end" and choice < 0.35:
+        if rng.random() < 0.3:
+            return replace(ref, side="left" if ref.side == "right" else "right")
+        return replace(ref, nth=rng.choice([n for n in range(1, 6) if n != ref.nth]))
+    if choice < 0.5:
+        return G.StudRef("from_end", side=rng.choice(["left", "right"]), nth=rng.randint(2, 5))
     ids = [f"5001{i:02d}" for i in range(13) if f"5001{i:02d}" != stud]
     return G.StudRef("id", stud_id=rng.choice(ids))
 

@@ -78,6 +78,9 @@ CONTEXT = [
     "the first stud has a pipe next to it", "the centre line is marked in blue", "we're two sheets behind",
     "the switch box is on the right side", "the top of the wall is not straight", "the full sheets are heavy",
     "mind the outlet box", "the door opening is further down", "careful , the floor is wet",
+    # stud spacing: how the wall is framed, never the centre-line placement (guidelines 4.7)
+    "the studs are 16 in on centre", "studs here are sixteen inches on center", "this wall is framed 16 o.c.",
+    "it's sixteen-inch centres on this wall", "stud spacing is 16 on center", "the framing is 24 inch on centre",
     "there's a pipe behind the wall", "the ceiling is eight feet here",
 ]
 CONTEXT_LINKS = ["so", "so", "and", "which means", "therefore", "hence", "that's why", ""]
@@ -164,7 +167,7 @@ ENG_DETAILS = [
     "tolerance 3 mm", "check plumb and line before fixing", "leave a 10 mm expansion gap", "fire rating 60 minutes",
     "fixings to manufacturer's specification", "joints to be staggered", "paper face out", "no cut edges at openings",
     "moisture resistant board not required", "screw heads to be set just below the paper", "2 fixings per metre minimum",
-    "record completion in the site diary",
+    "record completion in the site diary", "studs at 406 mm centres", "framing at 16 in on centre",
 ]
 ENG_DEFAULT_PLACEMENT = ["vertical", "vertical , edge on the left line of the stud", "portrait", "vertical , default",
                          "vertical , left edge on stud line", "vertical as usual"]
@@ -295,6 +298,9 @@ PANEL_ANCHOR_PREVIOUS = [
     "the {stack} from last/Dw_loc2 time/Dw_loc2",
     "the {stack} the last/Dw_loc2 one came/Dw_loc2 from", "the {stack} you just/Dw_loc2 took/Dw_loc2 from",
     "the one you took last/Dw_loc2",
+    # only a pointing word says it is the last one (guidelines 4.7): it carries the anchor tag
+    "that/Dw_loc2 one", "the {stack} that/Dw_loc2 one came/Dw_loc2 from", "the {stack} it/Dw_loc2 came/Dw_loc2 off",
+    "wherever that/Dw_loc2 {plainnoun} came/Dw_loc2 from",
 ]
 #: No target said (refused as undetermined).
 TARGET_NONE = ["a {noun}", "the {noun}", "one", "a {noun}", "the next {noun}", "any {noun}", "whatever {noun}",
@@ -363,6 +369,9 @@ STUD_ANCHOR_PREVIOUS = [
     "where you put the last/St_loc2 one", "the last/St_loc2 stud you used", "the previous/St_loc2 one",
     "that last/St_loc2 one", "where the previous/St_loc2 one went", "the stud from last/St_loc2 time/St_loc2",
     "where that last/St_loc2 one went", "the stud you just/St_loc2 did/St_loc2", "the last/St_loc2 one you did",
+    # only a pointing word says it is the last one (guidelines 4.7): it carries the anchor tag
+    "that/St_loc2 one", "that/St_loc2 one", "where/St_loc2 that one went", "where/St_loc2 you put it",
+    "it/St_loc2", "where/St_loc2 it went", "that/St_loc2 stud", "where/St_loc2 you hung that one",
 ]
 #: The stud of the last accepted command (St_loc1 "same" or "where" + St_loc2, guidelines 4.7).
 STUD_SAME = [

@@ -1,7 +1,9 @@
 """From tagged words to a robot command or a refusal: the IM module (the paper's Fig. 1).
 
-``interpret`` runs the target rules (Figs. 10-11), the destination rules (Fig. 12)
-and the placement rule, then checks that the robot can carry the command out (the
+``interpret`` reads the tags as the guidelines mean them (a word of punctuation, or one a
+change of mind took back, is ``O``: ``TaggedInstruction``; the trace's ``R0`` step names
+what a correction took back), runs the target rules (Figs. 10-11), the destination rules
+(Fig. 12) and the placement rule, then checks that the robot can carry the command out (the
 panel can be picked; it fits on the wall). It changes nothing: ``InformationMapper``
 keeps the action history and records a command only when it is accepted.
 """
@@ -11,8 +13,10 @@ from dataclasses import dataclass, field
 from typing import Callable, Mapping, Sequence, TypeVar
 
 from drywall_lab.errors import Refusal
+from drywall_lab.im import words as W
 from drywall_lab.im.command import RobotCommand
 from drywall_lab.im.context import MappingContext
+from drywall_lab.im.correction import NEGATIONS
 from drywall_lab.im.history import ActionHistory
 from drywall_lab.im.placement import resolve_placement
 from drywall_lab.im.stud import resolve_stud
@@ -72,6 +76,12 @@ def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory 
         trace.add("target", "empty instruction", True, conclusion=f"refused (undetermined): {message}")
         result.refusal = Refusal("undetermined", message)
         return result
+    if ti.spacing:
+        trace.add("reading", "R0 stud spacing", True,
+                  conclusion=f"{W.quote([ti.words[i] for i in ti.spacing])} is the stud spacing (how the wall is "
+                             "framed), not the placement: read as O")
+    if ti.taken_back:
+        trace.add("reading", "R0 final intention", True, conclusion=_taken_back_text(ti))
     ctx = MappingContext(site, history.state, history.last)
     try:
         drywall_id = resolve_target(ti, ctx, trace)
@@ -86,6 +96,19 @@ def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory 
     except Refusal as refusal:
         result.refusal = refusal
     return result
+
+
+def _taken_back_text(ti: TaggedInstruction) -> str:
+    """ "'second from the right' taken back by 'no'; 'left' ruled out by 'not'": what a change of mind took back
+    (guidelines 4.7)."""
+    by_cue: dict[str, list[str]] = {}
+    for i, cue in ti.taken_back.items():
+        by_cue.setdefault(cue, []).append(ti.words[i])
+    def how(cue: str) -> str:
+        return "ruled out" if tuple(W.normalise(w) for w in cue.split()) in NEGATIONS else "taken back"
+
+    return "; ".join(f"{W.quote(said)} {how(cue)} by '{cue}'" for cue, said in by_cue.items()) + (
+        ": only the final intention counts, read as O")
 
 
 def _check(rule: str, trace: Trace, check: Callable[[], T], conclusion: Callable[[T], str]) -> T:

@@ -84,7 +84,7 @@ def _anchor(ti: TaggedInstruction, ctx: MappingContext) -> tuple[Stud, str]:
     if ids:
         stud = ctx.site.stud(ids[0])
         return stud, f"stud {stud.stud_id}"
-    if W.back_reference_words(said) and not (W.says_last(said) and W.says_end(said)):  # not "the very last stud"
+    if W.points_back(said) and not (W.says_last(said) and W.says_end(said)):  # not "the very last stud"
         if W.counts_in(said) or W.sides_in(said) or W.says_middle(said):
             raise Refusal("undetermined", f"{quoted} mixes the previous stud with a position: which stud should "
                                           "the position be counted from?")

@@ -9,6 +9,7 @@ import pandas as pd
 from drywall_lab.corpus.tags import COREF_TAGS
 from drywall_lab.errors import Refusal
 from drywall_lab.im import words as W
+from drywall_lab.im.correction import taken_back
 
 
 _LEAD_IN = frozenset({"the", "a", "an", "is", "of", "that", "with", "width", "length", "size", "stud", "panel",
@@ -24,11 +25,19 @@ class TaggedInstruction:
     accepted and read as ``O``: the rules use only the 13 tags of spec section 2. A word
     with neither a letter nor a digit (a bullet ``•``, a dash ``—``) is punctuation, which
     carries no information (annotation guidelines 1): its tag is read as ``O`` whatever the
-    tagger said.
+    tagger said. So are the tags of words a change of mind takes back (``correction.taken_back``:
+    "the second from the right, no, the fourth from the right"): only the final intention counts
+    (guidelines 4.7). ``taken_back`` keeps which words those were, and what took each back. The
+    words of a stud spacing ("16 in on centre", ``words.stud_spacing``; kept in ``spacing``) are
+    read as ``O`` too: they say how the wall is framed, never the centre-line placement.
     """
 
     words: tuple[str, ...]
     tags: tuple[str, ...]
+    #: The positions whose tags a correction or a negation took back, each with the words that did.
+    taken_back: dict[int, str] = field(init=False, repr=False, compare=False)
+    #: The positions of a stud spacing phrase whose tags were read as ``O`` (empty when none of them was tagged).
+    spacing: tuple[int, ...] = field(init=False, repr=False, compare=False)
     #: Where each tag stands (tag -> word positions): the rules ask for it thousands of times per decision.
     _positions: dict[str, list[int]] = field(init=False, repr=False, compare=False)
 
@@ -41,6 +50,15 @@ class TaggedInstruction:
             raise ValueError(f"unknown tag(s) {', '.join(unknown)}; the tags are {', '.join(COREF_TAGS)}")
         if any(t != "O" and W.is_punctuation(w) for w, t in zip(words, tags)):
             tags = tuple("O" if W.is_punctuation(w) else t for w, t in zip(words, tags))
+        spacing = tuple(W.stud_spacing(words))
+        spacing = spacing if any(tags[i] not in W.UNTAGGED for i in spacing) else ()
+        if spacing:
+            tags = tuple("O" if i in spacing else t for i, t in enumerate(tags))
+        back = taken_back(words, tags)
+        if back:
+            tags = tuple("O" if i in back else t for i, t in enumerate(tags))
+        object.__setattr__(self, "taken_back", back)
+        object.__setattr__(self, "spacing", spacing)
         object.__setattr__(self, "words", words)
         object.__setattr__(self, "tags", tags)
         positions: dict[str, list[int]] = {}

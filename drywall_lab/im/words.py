@@ -38,6 +38,7 @@ _POSSESSIVE_ID = re.compile(r"^(\d{4,})['’]s$")
 LEFT_WORDS = frozenset({"left", "leftmost", "left-most", "lefthand", "left-hand"})
 RIGHT_WORDS = frozenset({"right", "rightmost", "right-most", "righthand", "right-hand"})
 MIDDLE_WORDS = frozenset({"middle", "center", "centre", "central", "halfway", "mid"})
+CENTRE_WORDS = frozenset({"center", "centre"})
 #: Words that say the centre-line placement (``Vr_md``): every ``Vr_md`` phrase of the guidelines has one.
 CENTRE_LINE_WORDS = MIDDLE_WORDS | {"centred", "centered", "centreline", "centerline", "c-l", "half", "split",
                                     "splitting"}
@@ -63,6 +64,10 @@ BACK_REFERENCE_WORDS = frozenset({
     "same", "previous", "previously", "last", "just", "before", "earlier", "again", "time",
     "installed", "hung", "used", "placed", "match", "matching", "matches", "like", "another", "those", "ditto",
 })
+#: Words that point back at the last piece only as the anchor of a relative position, where no word of
+#: ``BACK_REFERENCE_WORDS`` is said ("three right of that/St_loc2 one", "of where/St_loc2 you put it", "the pile that/Dw_loc2
+#: one came/Dw_loc2 from"; guidelines 4.7): an anchor is always a piece already handled, and these name no other.
+ANCHOR_POINTING_WORDS = frozenset({"that", "it", "where", "came", "went"})
 #: Size words that name the standard 4 x 8 panel (spec section 3, target rule 3).
 STANDARD_SIZE_WORDS = frozenset({"full-size", "full-sized", "fullsize", "full", "standard", "regular", "normal",
                                  "whole", "standard-size"})
@@ -136,23 +141,29 @@ def ordinal_of(word: str) -> int | None:
 
 
 def _counts(words: Sequence[str]) -> list[tuple[int, bool]]:
-    """(count, is an ordinal) for every count said, in order; "one" after an ordinal is the generic noun."""
+    """(count, is an ordinal) for every count said, in order; "one" (or "1", as a phone message writes it) after an
+    ordinal or after a word that points back is the generic noun."""
     out: list[tuple[int, bool]] = []
-    after_ordinal = False
+    before_noun = False
     for word in words:
+        w = normalise(word)
         n = ordinal_of(word)
         if n is not None:
             out.append((n, True))
-        elif not (after_ordinal and normalise(word) == "one"):
+        elif not (before_noun and w in ("one", "1")):
             out.extend((number, False) for number in numbers_in(word))
-        after_ordinal = n is not None
+        before_noun = n is not None or w in BACK_REFERENCE_WORDS or w in ANCHOR_POINTING_WORDS
     return out
 
 
 def counts_in(words: Sequence[str]) -> list[int]:
     """Every count said, in order: ordinals and numbers ("second", "two", "2nd", "zero", "0").
 
-    "one" right after an ordinal is the generic noun ("the 2nd one to the left"), not a count.
+    "one" right after an ordinal is the generic noun ("the 2nd one to the left"), not a count; so is "one" or "1"
+    right after a word that points back ("the last 1", "that one").
+
+    >>> counts_in(["2nd", "one"]), counts_in(["last", "1"]), counts_in(["two", "studs"])
+    ([2], [], [2])
     """
     return [n for n, _ in _counts(words)]
 
@@ -221,15 +232,33 @@ def says_middle(words: Iterable[str]) -> bool:
     return any(normalise(w) in MIDDLE_WORDS for w in words)
 
 
+def _with_pieces(words: Iterable[str]) -> set[str]:
+    """The normalised words and the pieces of their hyphenated compounds: "bottom-row" gives "bottom-row", "bottom"
+    and "row"."""
+    out = set()
+    for word in words:
+        w = normalise(word)
+        out.add(w)
+        out.update(piece for piece in w.split("-") if piece)
+    return out
+
+
 def says_centre_line(words: Iterable[str]) -> bool:
-    """ "centre", "c-l", "split the stud": a word that can carry ``Vr_md``; "the left line" alone cannot."""
-    return any(normalise(w) in CENTRE_LINE_WORDS for w in words)
+    """ "centre", "c-l", "centre-line", "split the stud": a word that can carry ``Vr_md``; "the left line" alone cannot."""
+    return not CENTRE_LINE_WORDS.isdisjoint(_with_pieces(words))
 
 
-def lying_words(words: Sequence[str]) -> list[int]:
+#: A lying word says how *this* panel goes only near the instruction's own words: at most this many words from a
+#: tagged word ("the 4 by 6 lying down at 500100"), not in a story before it.
+LYING_REACH = 4
+
+
+def lying_words(words: Sequence[str], tags: Sequence[str] | None = None) -> list[int]:
     """Where the words say the panel lies ("lying down", "sideways", "horizontally"), unless a word takes something
     back or denies it ("not sideways", "no wait"; the lying word may be the abandoned one) or a word says it stands
-    ("we did the last wall sideways; this one upright"): then none is given.
+    ("we did the last wall sideways; this one upright"): then none is given. With ``tags``, a lying word more than
+    ``LYING_REACH`` words from every tagged word says nothing of this panel: it is a story or a reason ("on the last
+    job we did every wall sideways anyway the 2x8 from the left ...").
 
     >>> lying_words("the 4 by 6 lying down at 500100".split()), lying_words("not sideways , upright".split())
     ([4], [])
@@ -237,7 +266,44 @@ def lying_words(words: Sequence[str]) -> list[int]:
     said = [normalise(w) for w in words]
     if any(w in TAKE_BACK_WORDS or w in UPRIGHT_WORDS for w in said):
         return []
-    return [i for i, w in enumerate(said) if w in LYING_WORDS]
+    lying = [i for i, w in enumerate(said) if w in LYING_WORDS]
+    if tags is None or not lying:
+        return lying
+    tagged = [j for j, t in enumerate(tags) if t not in UNTAGGED]
+    return [i for i in lying if any(abs(i - j) <= LYING_REACH for j in tagged)]
+
+
+#: The stud spacings of framing (inches on centre): "16 in on centre", "sixteen-inch centres", "24 o.c.".
+SPACING_INCHES = frozenset({12, 16, 24})
+_SPACING_UNITS = frozenset({"in", "inch", "inches"})
+_SPACING_CENTRES = frozenset({"centres", "centers", "o.c", "oc"})
+_SPACING_NUMBERS = [[n] for n in sorted(SPACING_INCHES)]
+
+
+def stud_spacing(words: Sequence[str]) -> list[int]:
+    """Where the words give the stud spacing ("the studs are 16 in on centre", spec section 1; "sixteen-inch centres",
+    "24 o.c."): the positions of the spacing phrase, which says how the wall is framed and never the centre-line
+    placement (guidelines 4.7). Only the framing spacings (``SPACING_INCHES``) count, never a panel size or an id:
+    "the 4 by 8 on centre" is a placement.
+
+    >>> stud_spacing("walls are sixteen on centre , 500104".split()), stud_spacing("the 4 by 8 on centre".split())
+    ([2, 3, 4], [])
+    """
+    norm = [normalise(w) for w in words]
+    if CENTRE_WORDS.isdisjoint(norm) and _SPACING_CENTRES.isdisjoint(norm):
+        return []  # no centre said at all: the usual case, decided without reading a number
+    out: list[int] = []
+    for i, w in enumerate(norm):
+        if numbers_in(words[i]) not in _SPACING_NUMBERS and w not in ("twenty-four", "twentyfour"):
+            continue
+        j = i + 1
+        while j < len(norm) and norm[j] in _SPACING_UNITS:
+            j += 1
+        if j < len(norm) and norm[j] in _SPACING_CENTRES:
+            out.extend(range(i, j + 1))
+        elif j + 1 < len(norm) and norm[j] == "on" and norm[j + 1] in CENTRE_WORDS | _SPACING_CENTRES:
+            out.extend(range(i, j + 2))
+    return out
 
 
 def says_placement(tag: str, words: Iterable[str]) -> bool:
@@ -246,11 +312,13 @@ def says_placement(tag: str, words: Iterable[str]) -> bool:
 
     >>> says_placement("Hr_btm", ["bottom", "row"]), says_placement("Hr_btm", ["lol"]), says_placement("Vr_md", ["line"])
     (True, False, False)
+    >>> says_placement("Hr_btm", ["bottom-row"]), says_placement("Vr_md", ["centre-line"]), says_placement("Hr_top", ["top-row"])
+    (True, True, True)
     """
     if tag == "Vr_md":
         return says_centre_line(words)
     said = TOP_ROW_WORDS if tag == "Hr_top" else BOTTOM_ROW_WORDS
-    return any(normalise(w) in said for w in words)
+    return not said.isdisjoint(_with_pieces(words))  # "bottom-row", "top-course" too
 
 
 def says_from(words: Iterable[str]) -> bool:
@@ -279,6 +347,12 @@ def says_last(words: Iterable[str]) -> bool:
 
 def back_reference_words(words: Iterable[str]) -> list[str]:
     return [w for w in words if normalise(w) in BACK_REFERENCE_WORDS]
+
+
+def points_back(anchor_words: Iterable[str]) -> bool:
+    """Whether an anchor's words point back at the last accepted command: a back-reference word ("previous", "the
+    one you just used") or, in an anchor only, a pointing word ("that one", "where you put it", ``ANCHOR_POINTING_WORDS``)."""
+    return any(normalise(w) in BACK_REFERENCE_WORDS or normalise(w) in ANCHOR_POINTING_WORDS for w in anchor_words)
 
 
 def standard_size_words(words: Iterable[str]) -> list[str]:

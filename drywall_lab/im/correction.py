@@ -58,6 +58,11 @@ _PART_OF = {tag: part for part, part_tags in PARTS.items() for tag in part_tags}
 _FIRST_WORDS = frozenset(cue[0] for cue in CORRECTION_CUES + NEGATIONS)
 
 
+def is_negation(cue: str) -> bool:
+    """Whether the words that took something back (a value of ``taken_back``) are a negation, not a correction."""
+    return tuple(W.normalise(w) for w in cue.split()) in NEGATIONS
+
+
 def _spans(norm: Sequence[str], cues: Sequence[tuple[str, ...]]) -> list[tuple[int, int]]:
     """(start, end) of every cue in the normalised words, left to right, the longest cue first at each word."""
     out, i = [], 0

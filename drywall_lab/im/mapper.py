@@ -1,8 +1,8 @@
 """From tagged words to a robot command or a refusal: the IM module (the paper's Fig. 1).
 
-``interpret`` reads the tags as the guidelines mean them (a word of punctuation, or one a
-change of mind took back, is ``O``: ``TaggedInstruction``; the trace's ``R0`` step names
-what a correction took back), runs the target rules (Figs. 10-11), the destination rules
+``interpret`` reads the tags as the guidelines mean them (a word of punctuation, a stud
+spacing, or a word a change of mind took back, is ``O``: ``TaggedInstruction``; the trace's
+``R0`` steps name what was read so), runs the target rules (Figs. 10-11), the destination rules
 (Fig. 12) and the placement rule, then checks that the robot can carry the command out (the
 panel can be picked; it fits on the wall). It changes nothing: ``InformationMapper``
 keeps the action history and records a command only when it is accepted.
@@ -16,7 +16,7 @@ from drywall_lab.errors import Refusal
 from drywall_lab.im import words as W
 from drywall_lab.im.command import RobotCommand
 from drywall_lab.im.context import MappingContext
-from drywall_lab.im.correction import NEGATIONS
+from drywall_lab.im.correction import is_negation
 from drywall_lab.im.history import ActionHistory
 from drywall_lab.im.placement import resolve_placement
 from drywall_lab.im.stud import resolve_stud
@@ -104,11 +104,8 @@ def _taken_back_text(ti: TaggedInstruction) -> str:
     by_cue: dict[str, list[str]] = {}
     for i, cue in ti.taken_back.items():
         by_cue.setdefault(cue, []).append(ti.words[i])
-    def how(cue: str) -> str:
-        return "ruled out" if tuple(W.normalise(w) for w in cue.split()) in NEGATIONS else "taken back"
-
-    return "; ".join(f"{W.quote(said)} {how(cue)} by '{cue}'" for cue, said in by_cue.items()) + (
-        ": only the final intention counts, read as O")
+    return "; ".join(f"{W.quote(said)} {'ruled out' if is_negation(cue) else 'taken back'} by '{cue}'"
+                     for cue, said in by_cue.items()) + ": only the final intention counts, read as O"
 
 
 def _check(rule: str, trace: Trace, check: Callable[[], T], conclusion: Callable[[T], str]) -> T:

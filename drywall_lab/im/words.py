@@ -152,7 +152,7 @@ def _counts(words: Sequence[str]) -> list[tuple[int, bool]]:
             out.append((n, True))
         elif not (before_noun and w in ("one", "1")):
             out.extend((number, False) for number in numbers_in(word))
-        before_noun = n is not None or w in BACK_REFERENCE_WORDS or w in ANCHOR_POINTING_WORDS
+        before_noun = n is not None or _points_back(w)
     return out
 
 
@@ -352,7 +352,11 @@ def back_reference_words(words: Iterable[str]) -> list[str]:
 def points_back(anchor_words: Iterable[str]) -> bool:
     """Whether an anchor's words point back at the last accepted command: a back-reference word ("previous", "the
     one you just used") or, in an anchor only, a pointing word ("that one", "where you put it", ``ANCHOR_POINTING_WORDS``)."""
-    return any(normalise(w) in BACK_REFERENCE_WORDS or normalise(w) in ANCHOR_POINTING_WORDS for w in anchor_words)
+    return any(_points_back(normalise(w)) for w in anchor_words)
+
+
+def _points_back(normalised: str) -> bool:
+    return normalised in BACK_REFERENCE_WORDS or normalised in ANCHOR_POINTING_WORDS
 
 
 def standard_size_words(words: Iterable[str]) -> list[str]:

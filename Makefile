@@ -40,12 +40,12 @@ corpus: setup  ## regenerate data/corpus from the fixed seed
 TAGGER_DIR ?= drywall_lab/models/default_tagger
 # The shipped tagger: BiLSTM-CRF with character features on the field corpus (its training split and the paper
 # corpus's, twice: drywall_lab/splits.py CORPORA), settings in drywall_lab/nlu/field_study.py DEFAULT_FIELD_TAGGER. One thread and the CPU, so that it
-# is rebuilt bit for bit on any machine. Seed 0: of the recipe's seed models that keep the test split's Acc_inst at
+# is rebuilt bit for bit on any machine. Seed 1: of the recipe's seed models that keep the test split's Acc_inst at
 # 99.4% or more, the one of least decision cost on the generated validation and novel splits
 # (benchmarks/results/decision.md; DEFAULT_FIELD_TAGGER says why).
-default-tagger: setup  ## retrain the shipped BiLSTM-CRF (seed 0, ~12 min on 2 CPU cores) and record its scores
+default-tagger: setup  ## retrain the shipped BiLSTM-CRF (seed 1, ~12 min on 2 CPU cores) and record its scores
 	OMP_NUM_THREADS=1 $(BIN)/python -m drywall_lab train bilstm-crf --corpus field --char-features --batch-size 32 \
-	  --epochs 8 --swa-epochs 3 --device cpu --out $(TAGGER_DIR) --seed 0
+	  --epochs 8 --swa-epochs 3 --device cpu --out $(TAGGER_DIR) --seed 1
 	$(MAKE) --no-print-directory tagger-scores TAGGER_DIR=$(TAGGER_DIR)
 
 # scores.txt: per set, evaluate's last line (acc_word acc_inst n_instructions acc_task and the decision layer's

@@ -30,7 +30,8 @@ information-mapping rules against the site and the action history, and then:
    rival and asks nothing.
 2. **A second reading would be safer**: the best reading is ``undetermined`` (a missed tag), and
    readings within the margin give exactly one command, with at least ``recover`` of the probability:
-   the robot takes that reading (the most probable one that is determined and feasible on the site).
+   the robot takes that reading (the most probable one that is determined and feasible on the site), provided it
+   passes the three checks of step 1 (otherwise it asks, as step 1 would).
 3. **Otherwise, ask** (refusal reason ``unclear``): two commands within the margin, or a command that
    is not sure enough. The message says what was understood and asks one question ("Did you mean
    panel 500321 on stud 500104 on its centre line, or on its left line?"). History and site untouched.
@@ -41,7 +42,12 @@ information-mapping rules against the site and the action history, and then:
    instruction (``unclear``) and before it next acts, a command that would be another one had the robot carried
    out a command it asked about (the same reading through the rules with that command in the history: "the
    same size as last time", "the top panel of the middle stack", a stud taken) is asked about too, naming both:
-   the worker may well have meant the instruction the robot did not carry out.
+   the worker may well have meant the instruction the robot did not carry out. The command asked about is carried
+   out in thought where the robot asked, before the commands acted on since (``had_it_been_done``: "the previous
+   stud" is still the last one the robot used). One that would make this instruction impossible is no reason to
+   ask when another command asked about leaves it as it is: the worker's words fit that one. A refused instruction
+   that would have been a command had the robot carried out what it asked about ("the stack right of the one you
+   just used", with nothing installed yet) stays open too, with that command (``would_have_been``).
 
    - ``half="said"``: an instruction refused as ``undetermined`` although it said something of the part the rules
      could not resolve ("a four by eight three studs to the left of that one", with "that one" missed) is half
@@ -50,7 +56,8 @@ information-mapping rules against the site and the action history, and then:
      fits, or every panel on top of a stack for the stud it names), and a command that any of them would change
      is asked about. A part counts as said when the best reading or a rival within the margin tags a word for it
      ("two right of the one you just used", read as a stack's position by the best reading and as the stud's by a
-     rival, said something of the stud). Only a changed *command* counts here (a completion on a stud the command would overlap says
+     rival, said something of the stud); a panel size in the words ("four by eight", ``words.says_a_size``) says
+     the panel whatever its tags. Only a changed *command* counts here (a completion on a stud the command would overlap says
      nothing). An instruction that said nothing of the missing part ("put any sheet on 500104"), and a site
      refusal (overlap, buried panel), are definite answers: "previous" is then the last accepted command, as spec
      section 3 says. With gold tags the layer still gives every intended outcome on every generated split
@@ -139,7 +146,7 @@ BEST_PATH = DecisionSettings(k=1, margin=0.0, act=0.0, recover=1.0, doubt=1.0, q
 #: recipe, by the mean cost over three models trained with seeds 0-2 (``benchmarks/results/decision.md``; a test
 #: checks that they are the recorded choice). Its rule gave ``doubt=1.0``: the doubtful-word check did not lower
 #: the cost there, so it is off by default.
-DEFAULT_SETTINGS = DecisionSettings(k=8, margin=1.5, act=0.5, recover=0.2, doubt=1.0, question=0.2, pending=True,
+DEFAULT_SETTINGS = DecisionSettings(k=8, margin=5.0, act=0.0, recover=0.2, doubt=1.0, question=0.2, pending=True,
                                     half="said", through=True)
 
 
@@ -400,15 +407,20 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         return Decision(words, list(reading.tags), result, mass.get(reading.outcome, 0.0), action, readings,
                         list(options))
 
+    def word_checks(reading: Reading) -> tuple[str, str, list[Outcome]] | None:
+        """The three checks of a reading against its own words (step 1), or None when it passes them or they are off."""
+        if not settings.word_checks:
+            return None
+        return (two_meanings(reading.outcome, words, reading.read_tags, history)
+                or placement_unsaid(reading.outcome, words, reading.read_tags, history, interpret)
+                or lying_unread(reading.outcome, words, reading.read_tags))
+
     if best.outcome[0] == "command":
         others = [o for o in rival_commands if o != best.outcome]
         if others:
             return finish(best, "ask", "two readings give different commands",
                           Refusal("unclear", question_between(best.outcome, others[0])), [best.outcome, others[0]])
-        checked = (two_meanings(best.outcome, words, best.read_tags, history)
-                   or placement_unsaid(best.outcome, words, best.read_tags, history, interpret)
-                   or lying_unread(best.outcome, words, best.read_tags)
-                   if settings.word_checks else None)
+        checked = word_checks(best)
         if checked is not None:
             why, question, options = checked
             return finish(best, "ask", why, Refusal("unclear", question), options)
@@ -436,6 +448,11 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
             return finish(chosen, "ask", "readings within the margin give different commands",
                           Refusal("unclear", question_between(first, second)), [first, second])
         if reason == "undetermined" and mass[first] >= settings.recover:
+            checked = word_checks(chosen)  # the reading taken must pass the checks the best one would have had to
+            if checked is not None:
+                why, question, options = checked
+                return finish(chosen, "ask", f"the best reading is undetermined, and the next one fails a check: {why}",
+                              Refusal("unclear", question), options)
             return finish(chosen, "recover",
                           f"the best reading is undetermined; the next reading within the margin gives one command, "
                           f"p={mass[first]:.3f}")
@@ -534,8 +551,8 @@ def completions(decision: Decision, history: ActionHistory, half: str = "said", 
     try:
         panels = [resolve_target(ti, ctx)]
     except Refusal:
-        if half == "said" and not said & set(TARGET_TAGS):
-            return []  # nothing said about the panel ("any sheet"): nothing to build on
+        if half == "said" and not said & set(TARGET_TAGS) and not W.says_a_size(decision.words):
+            return []  # nothing said about the panel ("any sheet"): nothing to build on; a size missed says it
         panels = [p for p in history.state.tops.values() if p is not None]
     try:
         studs = [resolve_stud(ti, ctx)]
@@ -552,26 +569,51 @@ def completions(decision: Decision, history: ActionHistory, half: str = "said", 
     return [command for command in meant if _feasible(history, command)]
 
 
-def not_carried_out(decision: Decision, unanswered: Sequence[tuple[Decision, Sequence[Outcome]]],
+def had_it_been_done(history: ActionHistory, asked_at: int, option: Outcome) -> ActionHistory | None:
+    """The history as it would stand had the robot carried out ``option`` when it asked (after the first ``asked_at``
+    commands of ``history``), the commands acted on since then following it: the worker who meant it builds on
+    that order ("the previous stud" is still the last one the robot used). None when it no longer fits: the
+    site does not allow it before the commands since (a panel taken since, an overlap)."""
+    commands = history.commands
+    other = ActionHistory(history.site)
+    try:
+        for command in commands[:asked_at]:
+            other.record(command)
+        other.record(RobotCommand.build(history.site, option[1], option[2], option[3]))
+        for command in commands[asked_at:]:
+            other.record(command)
+    except Refusal:
+        return None
+    return other
+
+
+def not_carried_out(decision: Decision, unanswered: Sequence[tuple[Decision, Sequence[Outcome]] | tuple[Decision, Sequence[Outcome], int]],
                     history: ActionHistory, interpreter: Callable = im_interpret) -> Decision:
     """Step 5 of the module docstring: ``decision`` would act, but the robot has asked about earlier steps
-    (``unanswered``: (decision, the commands it asked about or may have meant) pairs) and has not carried them
-    out. If recording one of those commands would make the same reading give another outcome, ask, naming both."""
+    (``unanswered``: (decision, the commands it asked about or may have meant, and how many commands ``history``
+    held when it asked, all of them when left out) triples) and has not carried them out. If one of those
+    commands, carried out when the robot asked (``had_it_been_done``), would make the same reading give another
+    command, ask, naming both. A command that would make this instruction impossible or unclear is no reason to ask
+    when another command asked about leaves it as it is: the worker's words fit that one (not for a question
+    whose every command would)."""
     if not decision.acted:
         return decision
     own = outcome_of(decision.interpretation)
-    for asked, options in unanswered:
+    for entry in unanswered:
+        asked, options = entry[0], entry[1]
+        asked_at = entry[2] if len(entry) > 2 else len(history)
         guessed = asked.refusal.reason not in NOT_UNDERSTOOD  # a half-understood refusal: what it may have meant
+        outcomes = []
         for option in options:
             if option[0] != "command":
                 continue
-            other_history = history.copy()
-            try:
-                other_history.record(RobotCommand.build(history.site, option[1], option[2], option[3]))
-            except Refusal:
+            other_history = had_it_been_done(history, asked_at, option)
+            if other_history is None:
                 continue  # no longer possible on the site: it cannot be what the worker now builds on
-            other = outcome_of(interpreter(decision.words, decision.tags, other_history))
-            if other == own or (guessed and other[0] != "command"):
+            outcomes.append((option, outcome_of(interpreter(decision.words, decision.tags, other_history))))
+        fits_one = any(other == own for _, other in outcomes)
+        for option, other in outcomes:
+            if other == own or (other[0] != "command" and (guessed or fits_one)):
                 continue
             said = " ".join(asked.words)
             if other[0] == "command":
@@ -586,6 +628,25 @@ def not_carried_out(decision: Decision, unanswered: Sequence[tuple[Decision, Seq
             return ask_instead(decision, question, options, "D unanswered question",
                                f"with {_describe(option)} carried out the reading gives {gives}: ask")
     return decision
+
+
+def would_have_been(decision: Decision, unanswered: Sequence[tuple[Decision, Sequence[Outcome], int]],
+                     history: ActionHistory, interpreter: Callable = im_interpret) -> list[Outcome]:
+    """The commands a refused instruction would have given had the robot carried out a command it asked about
+    (``had_it_been_done``): "the stack right of the one you just used", refused because nothing is installed yet,
+    rests on the question as much as a command does, so it stays open with them (step 5)."""
+    if decision.acted:
+        return []
+    meant: list[Outcome] = []
+    for entry in unanswered:
+        for option in entry[1]:
+            other_history = had_it_been_done(history, entry[2], option) if option[0] == "command" else None
+            if other_history is None:
+                continue
+            other = outcome_of(interpreter(decision.words, decision.tags, other_history))
+            if other[0] == "command" and other not in meant:
+                meant.append(other)
+    return meant
 
 
 def play_episode(instructions: Sequence[Sequence[str]], confidences: Sequence, labels: Sequence[str],
@@ -610,11 +671,13 @@ def play_episode(instructions: Sequence[Sequence[str]], confidences: Sequence, l
             if not settings.through:
                 unanswered = []
         elif decision.refusal.reason in NOT_UNDERSTOOD:
-            unanswered.append((decision, decision.options))
+            unanswered.append((decision, decision.options, len(history)))
         else:
             meant = completions(decision, history, settings.half, settings.margin)
+            if settings.pending and unanswered:
+                meant += [o for o in would_have_been(decision, unanswered, history, interpreter) if o not in meant]
             if meant:
-                unanswered.append((decision, meant))
+                unanswered.append((decision, meant, len(history)))
         decisions.append(decision)
     return decisions
 

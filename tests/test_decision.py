@@ -485,3 +485,94 @@ def test_a_part_is_said_when_a_reading_within_the_margin_tags_it():
     far = decide(words, [(best, math.log(0.9)), (rival, math.log(0.01))], np.zeros((len(words), len(TAGS))),
                  TAGS, history, DecisionSettings(margin=1.5))
     assert completions(far, history, "said", margin=1.5) == []
+
+
+# --- step 5 in detail: where the question was asked, what the words fit, what rests on it ------------------------
+def test_a_command_asked_about_is_carried_out_in_thought_where_the_robot_asked():
+    """``had_it_been_done``: the command asked about goes in before the commands acted on since, so "the previous
+    stud" is still the last one the robot used: the relative stud the worker means is the same either way, and the
+    robot acts. Carried out after them instead, "previous" would point at the question's stud, and it would ask."""
+    from drywall_lab.decision import had_it_been_done
+    first, first_tags = _wt("Put panel 500320/ID_wall on stud 500100/ID_stud")
+    unsure, unsure_tags = _wt(CENTRE)
+    left = ["O" if t == "Vr_md" else t for t in unsure_tags]
+    named, named_tags = _wt("Put panel 500322/ID_wall on stud 500109/ID_stud")
+    relative, relative_tags = _wt("panel 500310/ID_wall on the stud three/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 "
+                                  "of the previous/St_loc2 stud/St_loc2")
+    history = ActionHistory()
+    decisions = play_episode([first, unsure, named, relative], [_Gold(first_tags), _unsure(unsure, unsure_tags, left),
+                             _Gold(named_tags), _Gold(relative_tags)], TAGS, history)
+    assert [d.action for d in decisions] == ["act", "ask", "act", "act"]
+    assert decisions[3].command.stud_id == "500106"  # three left of 500109, the last stud used
+    option = decisions[1].options[0]
+    thought = had_it_been_done(history, 1, option)
+    assert [c.drywall_id for c in thought.commands] == ["500320", option[1], "500322", "500310"]
+    assert thought.last == history.last and len(history) == 3  # nothing recorded in the real history
+    before = ActionHistory.from_commands([c.as_contract() for c in history.commands[:2]])
+    at_the_end = not_carried_out(decide_tags(relative, relative_tags, TAGS, before), [(decisions[1], [option], 2)], before)
+    assert at_the_end.action == "ask" and at_the_end.refusal.message.startswith('I have not carried out')
+    # a command asked about that the site no longer allows before the commands since is no reason to ask
+    taken = ("command", "500322", "500104", "vertical_left")  # 500322 was installed since
+    assert had_it_been_done(history, 1, taken) is None
+
+
+def test_a_command_asked_about_that_would_make_the_instruction_impossible_is_no_reason_to_ask():
+    """Asked "lying in the bottom row, or upright?", the worker goes on with a full sheet in the top row: upright,
+    the first panel would be in its way, lying it is not. The words fit the lying one, which leaves the command as it
+    is: the robot acts. Asked about the upright one alone, it asks."""
+    lying, lying_tags = _wt("the 4/width by 6/length panel lying down at stud 500102/ID_stud in the bottom/Hr_btm "
+                            "row/Hr_btm")
+    upright = ["O" if t == "Hr_btm" else t for t in lying_tags]
+    top, top_tags = _wt("a standard/dim sheet in the top/Hr_top row/Hr_top at 500100/ID_stud")
+    decisions = play_episode([lying, top], [_unsure(lying, lying_tags, upright), _Gold(top_tags)], TAGS, ActionHistory())
+    assert [d.action for d in decisions] == ["ask", "act"]
+    assert {o[3] for o in decisions[0].options} == {"horizontal_bottom", "vertical_left"}
+    only_upright = [(decisions[0], [o for o in decisions[0].options if o[3] == "vertical_left"], 0)]
+    asked = not_carried_out(decisions[1], only_upright, ActionHistory())
+    assert asked.action == "ask" and asked.refusal.message.endswith("Is that what you mean?")
+
+
+def test_a_refusal_that_rests_on_an_unanswered_question_stays_open():
+    """``would_have_been``: with nothing installed, "the stack right of the one you just used" is refused, but had
+    the robot carried out what it asked about it would be a command: it stays open with that command, and a later
+    command it would change ("the 2 by 8" is another panel once the middle stack's top is used) is asked about."""
+    from drywall_lab.decision import would_have_been
+    unsure, unsure_tags = _wt("the 4/width by 8/length panel on stud 500100/ID_stud on the centre/Vr_md line/Vr_md")
+    left = ["O" if t == "Vr_md" else t for t in unsure_tags]
+    after, after_tags = _wt("the panel from the stack right/Dw_loc1 of/Dw_loc1 the one you just/Dw_loc2 used/Dw_loc2 "
+                            "on stud 500104/ID_stud")
+    two, two_tags = _wt("a 2/width by 8/length sheet on stud 500108/ID_stud")
+    steps, readings = [unsure, after, two], [_unsure(unsure, unsure_tags, left), _Gold(after_tags), _Gold(two_tags)]
+    decisions = play_episode(steps, readings, TAGS, ActionHistory())
+    assert [d.action for d in decisions] == ["ask", "refuse", "ask"]
+    assert decisions[1].refusal.reason == "no_history"
+    assert {o[1] for o in would_have_been(decisions[1], [(decisions[0], decisions[0].options, 0)], ActionHistory())} \
+        == {"500321"}
+    assert {o[1] for o in decisions[2].options} == {"500321", "500311"}
+    from dataclasses import replace
+    off = play_episode(steps, readings, TAGS, ActionHistory(), replace(DEFAULT_SETTINGS, pending=False))
+    assert [d.action for d in off] == ["ask", "refuse", "act"]
+
+
+def test_a_reading_taken_for_an_undetermined_best_one_passes_the_word_checks():
+    """Step 2 takes the next reading when the best is undetermined, but that reading is checked against its words as
+    the best one would be: "the 2x8 ... a full one" with both tagged names two panels, so the robot asks."""
+    words, tags = _wt("the 2x8/width is up there so a full/dim one on 500106/ID_stud")
+    missed = ["O" if t != "ID_stud" else t for t in tags]
+    d = decide(words, [(missed, math.log(0.5)), (tags, math.log(0.45))], _sure(tags), TAGS)
+    assert d.action == "ask" and {o[1] for o in d.options} == {"500321", "500320"}
+    assert "fails a check" in str(d.interpretation.trace)
+    single = ["O" if t == "dim" else t for t in tags]
+    d = decide(words, [(missed, math.log(0.5)), (single, math.log(0.45))], _sure(single), TAGS)
+    assert d.action == "recover" and d.command.drywall_id == "500321"
+
+
+def test_a_size_the_tagger_missed_still_says_the_panel():
+    """``half="said"``: "put one of the four by eight sheets on 500104" with the size untagged is refused (which
+    panel?), but the words said the panel: the commands it may have meant are every panel on top of a stack there."""
+    history = ActionHistory()
+    words = "put one of the four by eight sheets on 500104".split()
+    tags = ["O"] * (len(words) - 1) + ["ID_stud"]
+    refused = decide_tags(words, tags, TAGS, history)
+    assert refused.refusal.reason == "undetermined"
+    assert {o[1] for o in completions(refused, history, "said")} == {"500320", "500321", "500322"}

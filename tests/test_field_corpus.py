@@ -207,3 +207,22 @@ def test_context_that_sets_the_placement_is_tagged_and_a_bare_side_names_a_stack
     for row in bare:
         first = next(i for i, w in enumerate(row["words"]) if w.lower() in ("left", "middle", "right", "centre", "center"))
         assert row["tags"][first] == "Dw_loc1", row["text"]
+
+
+def test_counts_after_the_anchor_positions_with_ids_and_counted_panels(train):
+    """Guidelines 4.7: non-native order gives a relative stud position's count after its anchor (tagged St_loc1
+    where it stands); a stud id may come with its position too (both tagged); "a second 4x8" counts panels (O)."""
+    seen = Counter()
+    for row in train:
+        tags, words = row["tags"], [w.lower() for w in row["words"]]
+        anchors = [i for i, t in enumerate(tags) if t == "St_loc2"]
+        counts = [i for i, t in enumerate(tags) if t == "St_loc1"]
+        if anchors and counts and counts[-1] > anchors[-1] + 1:
+            seen["count after the anchor"] += 1
+        if "ID_stud" in tags and counts and not anchors:
+            seen["position and id"] += 1
+        for i, word in enumerate(words[:-1]):
+            if word == "second" and i and words[i - 1] == "a":
+                seen["a second"] += 1
+                assert tags[i] == "O", row["text"]
+    assert min(seen["count after the anchor"], seen["position and id"], seen["a second"]) >= 50, seen

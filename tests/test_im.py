@@ -171,6 +171,11 @@ TARGETS = [
     ("the 6/width by 4/length panel", (), "500322"),  # turned
     ("a 2/width foot wide panel", (), "500321"),
     ("a panel 6/length feet long", (), "500322"),
+    # a texted "1" after a size is the panel, not a size of 1 ft; a number before a whole "A by B" counts panels
+    ("a 2/width ft wide 1/width on it", (), "500321"),
+    ("the 4x8/width one/length", (), "500320"),
+    ("over all three/width 2/width by 8/length", (), "500321"),
+    ("crew two/width this is bravo four/width by six/length", (), "500322"),
     ("a panel that is six/width feet wide", (), "500322"),  # no width 6: turned, the 4 x 6's length
     ("the length is 8/length and the width is 2/width", (), "500321"),
     # rule 3: size words and back-references
@@ -231,6 +236,8 @@ TARGET_REFUSALS = [
     ("the panel that is 4/width feet wide", (), "ambiguous_size"),
     ("the 3/width by 5/length panel", (), "no_matching_size"),
     ("the 2/width by 6/length panel", (), "no_matching_size"),
+    ("a 2/width by 8/length or a 4/width by 6/length", (), "ambiguous_size"),  # two pairs: no count to drop
+    ("three/width 2/width by 8/length and 4/width by 6/length", (), "ambiguous_size"),
     ("the same/dim size as the previous/dim one", (), "no_history"),
     ("the panel right/Dw_loc1 of the previous/Dw_loc2 one", (), "no_history"),
     ("the panel right/Dw_loc1 of 500302/Dw_loc2", (), "off_the_end"),
@@ -346,6 +353,15 @@ STUDS = [
     ("one/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of where/St_loc2 that one went", (("500320", "500104", "vertical_left"),), "500105"),
     # "1" after a word that points back is the noun, as a phone message writes "one"
     ("2/St_loc1 studs left/St_loc1 of the last/St_loc2 1/St_loc2", (("500320", "500105", "vertical_left"),), "500103"),
+    # non-native order: the count after the anchor (guidelines 4.7)
+    ("at left/St_loc1 of 500104/St_loc2 , three/St_loc1 studs", (), "500101"),
+    ("to the right/St_loc1 side of the previous/St_loc2 stud , 2/St_loc1 studs", (("500320", "500104", "vertical_left"),),
+     "500106"),
+    # a stud named by its position and its id: they agree, the id decides; a lone side word is no position
+    ("the far/St_loc1 left/St_loc1 stud , 500100/ID_stud", (), "500100"),
+    ("the fifth/St_loc1 stud , stud 500104/ID_stud", (), "500104"),
+    ("two/St_loc1 right/St_loc1 of 500102/St_loc2 , that is 500104/ID_stud", (), "500104"),
+    ("right/St_loc1 now on 500105/ID_stud", (), "500105"),
 ]
 
 
@@ -398,7 +414,18 @@ STUD_REFUSALS = [
     ("the stud second/St_loc1 three/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of 500104/St_loc2", (), "undetermined"),
     ("the same/St_loc1 stud two/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of the previous/St_loc2 one",
      (("500320", "500104", "vertical_left"),), "undetermined"),
+    # a position and an id that name two different studs: a question, never one of them
+    ("the far/St_loc1 left/St_loc1 stud , 500101/ID_stud", (), "undetermined"),
+    ("two/St_loc1 right/St_loc1 of 500102/St_loc2 , 500105/ID_stud", (), "undetermined"),
+    ("the same/St_loc1 stud , 500107/ID_stud", (("500320", "500104", "vertical_left"),), "undetermined"),
 ]
+
+
+def test_a_position_and_an_id_that_disagree_name_both_studs():
+    with pytest.raises(Refusal) as info:
+        resolve_stud(tagged("the far/St_loc1 left/St_loc1 stud , 500101/ID_stud"), context())
+    assert info.value.message == ("Stud 500101 and 'far left' (stud 500100) are two different studs: "
+                                  "which one should I use?")
 
 
 @pytest.mark.parametrize("markup, history, reason", STUD_REFUSALS)
@@ -970,5 +997,6 @@ def test_a_correction_only_ever_reads_tags_as_o(words_tags):
         assert cue.split()[0] in (words[i + 1:] if said in CORRECTION_CUES else words[:i])
     if {c[0] for c in CORRECTION_CUES + NEGATIONS}.isdisjoint(W.normalise(w) for w in words):
         assert back == {}
-    ti = TaggedInstruction(words, tags)
-    assert all(t == "O" for i, t in enumerate(ti.tags) if i in back)
+    ti = TaggedInstruction(words, tags)  # it reads punctuation as O first, so it may take back less than ``back``
+    assert all(t == "O" for i, t in enumerate(ti.tags) if i in ti.taken_back)
+    assert set(ti.taken_back) <= set(back) or any(W.is_punctuation(w) for w in words)

@@ -115,6 +115,8 @@ def size_phrase(ch: Chooser, ref: G.TargetRef) -> Phrase:
             return tagged(f"{NUMBER_WORDS[a] if ch.chance(0.5) else a}-foot-wide", "width")
         if form == 2:
             return _number(ch, a, "width") + plain(rng.choice(["foot wide", "feet wide", "ft wide", "wide"]))
+        if form == 3 and ch.chance(0.5):  # the role's noun after the number: "of 2 ft width", "2 feet in width"
+            return _number(ch, a, "width") + plain(rng.choice(F.SIZE_NOUN_AFTER)) + plain("width")
         return plain(rng.choice(["width", "width of"])) + _number(ch, a, "width")
     if ref.kind == "length":  # "a six-footer", "the 6 foot one", "six feet long"
         form = rng.randrange(4)
@@ -125,6 +127,8 @@ def size_phrase(ch: Chooser, ref: G.TargetRef) -> Phrase:
             return tagged(f"{word}-footer", "length") if ch.chance(0.5) else tagged(f"{word}-foot", "length") + plain("long")
         if form == 2:
             return _number(ch, b, "length", ("-foot", "'", " foot"))
+        if form == 3 and ch.chance(0.5):  # "of 6 ft length", "six feet in length"
+            return _number(ch, b, "length") + plain(rng.choice(F.SIZE_NOUN_AFTER)) + plain("length")
         return plain(rng.choice(["length", "length of"])) + _number(ch, b, "length")
     if ref.length_first:  # "8 long by 4 wide": the words name the roles
         first = _number(ch, b, "length") + plain(rng.choice(["long", "foot long", "feet long", "ft long"]))
@@ -193,6 +197,8 @@ class Pieces:
     meaning: G.Meaning
     read_out_ids: float = 0.0  #: chance that an id is read out digit by digit (radio, speech)
     bare_stacks: bool = False  #: a stack may be named by its side alone (where a key or a line says it is the panel)
+    count_last: float = 0.0  #: chance that a relative stud position gives its count after the anchor (non-native)
+    stud_ids: tuple[str, ...] = ()  #: the wall's studs, left to right: a stud id may come with its position too
 
     def noun(self) -> Phrase:
         return words_of(self.ch, F.PANEL_NOUNS)
@@ -237,7 +243,10 @@ class Pieces:
         ch, ref = self.ch, ref or self.meaning.stud
         stud = words_of(ch, F.STUD_NOUNS)
         if ref.kind == "id":
-            return ch.say(F.STUD_ID_TERSE if terse else F.STUD_ID, id=id_phrase(ch, ref.stud_id, "ID_stud", self.read_out_ids), stud=stud)
+            said = ch.say(F.STUD_ID_TERSE if terse else F.STUD_ID, id=id_phrase(ch, ref.stud_id, "ID_stud", self.read_out_ids),
+                          stud=stud)
+            position = self.position_of(ref.stud_id) if ch.chance(0.05) else None
+            return position + [punct(",")] + said if position else said
         if ref.kind == "absolute":
             return ch.say((F.STUD_END_TERSE if terse else F.STUD_END)[ref.name], stud=stud)
         if ref.kind == "from_end":
@@ -249,17 +258,54 @@ class Pieces:
         if ref.kind == "same":
             return ch.say(F.STUD_SAME_TERSE if terse else F.STUD_SAME, stud=stud)
         if ref.kind == "relative":
+            if ch.chance(self.count_last):
+                return self.count_after_anchor(ref)
             direction = direction_phrase(ch, ref.direction, ref.count, "St_loc1", "stud")
-            if ref.anchor == "previous":
-                anchor = ch.say(F.STUD_ANCHOR_PREVIOUS)
-            elif ref.anchor in ("leftmost", "rightmost"):
-                anchor = ch.say(F.STUD_ANCHOR_END[ref.anchor])
-            else:
-                anchor = ch.say(F.STUD_ANCHOR_ID, id=id_phrase(ch, ref.anchor, "St_loc2"))
-            return ch.say(F.STUD_RELATIVE_TERSE if terse else F.STUD_RELATIVE, dir=direction, anchor=anchor, stud=stud)
+            return ch.say(F.STUD_RELATIVE_TERSE if terse else F.STUD_RELATIVE, dir=direction, anchor=self.stud_anchor(ref),
+                          stud=stud)
         if ref.kind == "none":
             return ch.say(F.STUD_NONE)
         raise ValueError(ref)
+
+    def stud_anchor(self, ref: G.StudRef) -> Phrase:
+        """The anchor of a relative stud position, tagged St_loc2."""
+        ch = self.ch
+        if ref.anchor == "previous":
+            return ch.say(F.STUD_ANCHOR_PREVIOUS)
+        if ref.anchor in ("leftmost", "rightmost"):
+            return ch.say(F.STUD_ANCHOR_END[ref.anchor])
+        return ch.say(F.STUD_ANCHOR_ID, id=id_phrase(ch, ref.anchor, "St_loc2"))
+
+    def count_after_anchor(self, ref: G.StudRef) -> Phrase:
+        """Non-native order, the count after the anchor: "at left of 500104 , three studs", "to the right side of
+        the previous stud , 2 studs". The side word and the count carry St_loc1, the rest is O (guidelines 4.7)."""
+        ch, rng = self.ch, self.ch.rng
+        number = str(ref.count) if ch.chance(0.4) else NUMBER_WORDS[ref.count]
+        unit = rng.choice(["stud", "stud", "", "stud away", "stud distance", "place"])
+        if unit and ref.count != 1:
+            unit = unit.replace("stud", "studs").replace("place", "places")
+        count = ch.say(F.COUNT_AFTER_ANCHOR, n=tagged(number, "St_loc1"), unit=plain(unit))
+        side = plain(rng.choice(F.SIDE_LEADS)) + tagged(ref.direction, "St_loc1") + plain(rng.choice(["", "", "side"]))
+        return side + plain(rng.choice(["of", "of", "from"])) + self.stud_anchor(ref) + [punct(",")] + count
+
+    def position_of(self, stud_id: str) -> Phrase | None:
+        """The stud's position said before its id, both tagged ("the far left stud , 500100", "the third stud ,
+        500102"): redundant, the id decides (guidelines 4.7). None where no short position names it."""
+        if stud_id not in self.stud_ids:
+            return None
+        ch, i, n = self.ch, self.stud_ids.index(stud_id), len(self.stud_ids)
+        stud = words_of(ch, F.STUD_NOUNS)
+        if i == 0:
+            return ch.say(F.STUD_END["leftmost"], stud=stud)
+        if i == n - 1:
+            return ch.say(F.STUD_END["rightmost"], stud=stud)
+        ends = [(nth, side) for nth, side in ((i + 1, "left"), (n - i, "right")) if nth in ORDINAL_WORDS]
+        if not ends:
+            return None
+        nth, side = ch.rng.choice(ends)
+        if side == "left" and ch.chance(0.4):
+            return ch.say(F.STUD_ORDINAL, stud=stud, ord=tagged(_ordinal(ch, nth), "St_loc1"))
+        return ch.say(F.STUD_FROM_END, stud=stud, ord=tagged(_ordinal(ch, nth), "St_loc1"), side=tagged(side, "St_loc1"))
 
     def placement(self, placement: str | None = None) -> Phrase:
         """The placement as said; now and then after a placement ruled out ("not up top , centre line")."""
@@ -358,7 +404,9 @@ class Speaker:
     register: str = "formal"
 
     def __post_init__(self) -> None:
-        self.p = Pieces(self.ch, self.meaning, read_out_ids=0.3 if self.register in ("radio", "speech") else 0.0)
+        self.p = Pieces(self.ch, self.meaning, read_out_ids=0.3 if self.register in ("radio", "speech") else 0.0,
+                        count_last=0.35 if self.register == "non_native" else 0.03,
+                        stud_ids=tuple(self.ep.state.site.stud_ids))
 
     # words
     def w(self, bank: list[str]) -> Phrase:

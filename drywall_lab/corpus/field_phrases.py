@@ -203,12 +203,15 @@ TARGET_ID_TERSE = ["{id}", "{idnoun} {id}", "{id}", "{id}"]
 TARGET_SIZE = [
     "a {size} {noun}", "the {size} {noun}", "a {size}", "the {size}", "one {size}", "one of the {size} {plural}",
     "a {noun} that is {size}", "the {noun} that's {size}", "a {size} one", "the {noun} {size}",
-    "a {noun} {size}", "the {size} size {noun}",
+    "a {noun} {size}", "the {size} size {noun}", "a {noun} of {size}", "one of {size}",
+    # an ordinal that counts the panels put up, not a stack: O ("a second 4x8 sheet")
+    "a second {size} {noun}",
 ]
 TARGET_SIZE_TERSE = ["{size}", "{size}", "{size} {noun}", "{noun} {size}", "{size} one"]
 #: {std} is a tagged standard-size phrase.
 TARGET_STANDARD = [
     "a {std} {noun}", "the {std} {noun}", "one of the {std} {plural}", "a {std} one", "a {std}",
+    "a second {std} {noun}", "one more {std} {noun}",
 ]
 TARGET_STANDARD_TERSE = ["{std} {noun}", "{std}", "{std} one"]
 STANDARD_WORDS = [
@@ -356,6 +359,11 @@ STUD_RELATIVE = [
     "{dir} of {anchor}", "the one {dir} of {anchor}",
 ]
 STUD_RELATIVE_TERSE = ["{dir} of {anchor}", "{dir} from {anchor}", "{dir} {anchor}"]
+#: Non-native order, the count after the anchor ("at left of 500104 , three studs"): {n} the tagged count.
+COUNT_AFTER_ANCHOR = ["{n} {unit}", "{n} {unit}", "distance {n} {unit}", "{n} {unit} far", "count {n}", "{n} {unit} from it",
+                      "is {n} {unit}", "about {n} {unit}"]
+#: The words before the side in that order: O ("to the right side of ...", "at left of ...").
+SIDE_LEADS = ["to the", "to the", "at", "at the", "on the", "in the", "", "on", "the stud at", "the stud on the", "for"]
 STUD_ANCHOR_ID = ["{id}", "{id}", "stud {id}", "the stud {id}", "the {id} stud", "{id} stud"]
 STUD_ANCHOR_END = {
     "leftmost": ["the first/St_loc2 stud", "the leftmost/St_loc2 stud", "the far/St_loc2 left/St_loc2 stud",
@@ -476,10 +484,15 @@ CONTEXT_PLACEMENT = {
                           "we're starting the bottom/Hr_btm course/Hr_btm", "now we work down low/Hr_btm",
                           "no scaffold yet so we stay low/Hr_btm"],
 }
+#: The role's noun after a single size number ("of 2 ft width", "six feet in length"): O, the number carries the tag.
+SIZE_NOUN_AFTER = ["ft", "ft in", "foot", "feet in", "feet", "foot in"]
 #: Radio call signs built from a unit and a number ("team two , this is bravo"): every word O, the number too.
-CALL_UNITS = ["crew", "team", "unit", "robot", "bot", "lift", "truck", "gang", "squad", "car", "mobile", "arm"]
-CALL_NAMES = ["alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "kilo", "lima", "mike", "oscar", "tango",
-              "victor", "base", "control", "site office", "the gate", "ops", "the foreman", "supervisor"]
+CALL_UNITS = ["crew", "team", "unit", "robot", "bot", "lift", "truck", "gang", "squad", "car", "mobile", "arm",
+              "crane", "loader", "cart", "tower", "station", "machine", "forklift", "hoist", "tractor", "group", "cell"]
+#: The NATO spelling alphabet and a few site names.
+CALL_NAMES = ["alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel", "india", "juliet", "kilo", "lima",
+              "mike", "november", "oscar", "papa", "quebec", "romeo", "sierra", "tango", "uniform", "victor", "whiskey",
+              "x-ray", "yankee", "zulu", "base", "control", "site office", "the gate", "ops", "the foreman", "supervisor"]
 CALL_FRAMES = ["{unit} {n} , this is {name}", "{name} to {unit} {n}", "{unit} {n} , {name}", "{name} calling {unit} {n}",
                "{unit} {n} from {name}", "this is {name} for {unit} {n}"]
 #: A numbered label before a list or key-value instruction ("task #3 :"): the number is a label, O.

@@ -2,7 +2,8 @@
 
 Three rules, tried in order:
 
-1. ``ID_stud``: that stud.
+1. ``ID_stud``: that stud. Where position words name a stud too ("the far left stud, 500100"), they must
+   name the same one: two different studs are ``undetermined`` (a question, never a guess).
 2. ``St_loc1`` alone: a stud named by where it is on the wall: leftmost/first,
    rightmost/last, middle/centre, "n-th from the left/right", or a bare ordinal
    ("the third stud", counted from the left); "the same stud" (or "where the last one
@@ -50,7 +51,24 @@ def stud_by_id(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
     if len(ids) > 1:
         raise Refusal("undetermined", f"Two studs are named, {' and '.join(ids)}: which one should I use?")
     stud = ctx.site.stud(ids[0])  # unknown_id for an id not on this wall
-    return Decision(stud.stud_id, f"stud {stud.stud_id} (x = {stud.x_center:.4f} m)")
+    also = _position_said_too(ti, ctx)
+    if also is not None and also.value != stud.stud_id:
+        raise Refusal("undetermined", f"Stud {stud.stud_id} and {W.quote(ti.words_with('St_loc1'))} (stud "
+                                      f"{also.value}) are two different studs: which one should I use?")
+    agrees = f", as {W.quote(ti.words_with('St_loc1'))} says too" if also is not None else ""
+    return Decision(stud.stud_id, f"stud {stud.stud_id} (x = {stud.x_center:.4f} m){agrees}")
+
+
+def _position_said_too(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
+    """The stud that position words beside an id name ("the far left stud, 500100"; rules 2-3), or None: no
+    position words, a lone side word ("right" of "right now" is a time word), or words that name no stud."""
+    said = ti.words_with("St_loc1")
+    if not said or (len(said) == 1 and W.sides_in(said)):
+        return None
+    try:
+        return stud_by_relative_position(ti, ctx) if ti.has("St_loc2") else stud_by_position(ti, ctx)
+    except Refusal:
+        return None
 
 
 # --- rule 2 ---------------------------------------------------------------------------

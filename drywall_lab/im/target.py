@@ -5,7 +5,8 @@ Five rules, tried in order; the first that applies decides:
 1. ``ID_wall``: that panel.
 2. ``width`` / ``length`` numbers (feet): the stack whose size matches; "A by B" is
    width A, length B; tried turned when nothing matches as said; a single number
-   that fits two sizes is ambiguous.
+   that fits two sizes is ambiguous. A "one" (or a texted "1") right after a size is the
+   panel ("a 2 ft wide 1"), and a number before a whole "A by B" counts panels ("three 2 by 8s").
 3. ``dim``: a size word ("full-size", "standard", "regular size") is the standard 4 x 8; a
    back-reference ("same as the previous one") is the size of the last installed panel. A
    lone "size" or "sized" names no size: the rule does not apply.
@@ -73,11 +74,14 @@ def target_by_id(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
 
 # --- rule 2 ---------------------------------------------------------------------------
 def _said_size(ti: TaggedInstruction) -> tuple[float | None, float | None] | None:
-    """(width, length) as said; a one-word size ("4x8") or two numbers under one tag are "A by B"."""
+    """(width, length) as said; a one-word size ("4x8") or two numbers under one tag are "A by B". A "one" (or a
+    texted "1") right after a size is the panel, not a number ("a 2 ft wide 1"; ``words.is_noun_one``), and a
+    number before a whole "A by B" counts panels ("three 2 by 8s"; ``_by_pair``): only the pair is the size."""
     widths: list[int] = []
     lengths: list[int] = []
-    for word, tag in zip(ti.words, ti.tags):
-        if tag not in SIZE_TAGS:
+    pair = _by_pair(ti)
+    for i, (word, tag) in enumerate(zip(ti.words, ti.tags)):
+        if tag not in SIZE_TAGS or W.is_noun_one(ti.words, i) or (pair is not None and i not in pair):
             continue
         numbers = W.numbers_in(word)
         if len(numbers) >= 2:
@@ -94,6 +98,21 @@ def _said_size(ti: TaggedInstruction) -> tuple[float | None, float | None] | Non
     if len(widths) > 1 or len(lengths) > 1:
         raise Refusal("ambiguous_size", f"{W.quote(ti.phrase(*SIZE_TAGS))} gives more than one size: which panel?")
     return (float(widths[0]) if widths else None), (float(lengths[0]) if lengths else None)
+
+
+_BY = frozenset({"by", "x", "times"})
+
+
+def _by_pair(ti: TaggedInstruction) -> tuple[int, int] | None:
+    """The positions of a whole "A by B" whose two numbers are tagged as a size ("2/width by 8/length"), when
+    other size-tagged numbers stand beside it ("three/width 2/width by 8/length"); None otherwise, and when two
+    different pairs are said (then the size is ambiguous, as said)."""
+    tagged = [i for i, t in enumerate(ti.tags) if t in SIZE_TAGS and W.numbers_in(ti.words[i])]
+    pairs = {(i, j) for i in tagged for j in tagged
+             if j == i + 2 and W.normalise(ti.words[i + 1]) in _BY and len(W.numbers_in(ti.words[i])) == 1}
+    if len(pairs) != 1 or len(tagged) <= 2:
+        return None
+    return next(iter(pairs))
 
 
 def target_by_size(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:

@@ -156,6 +156,37 @@ def _counts(words: Sequence[str]) -> list[tuple[int, bool]]:
     return out
 
 
+#: The words a size phrase ends with ("2 ft wide", "an 8 foot", "a six-footer").
+_SIZE_ENDS = frozenset({"wide", "long", "tall", "high", "across", "ft", "foot", "feet", "footer"})
+
+
+def is_noun_one(words: Sequence[str], i: int) -> bool:
+    """Whether ``words[i]`` is "one" (or "1", as a text message writes it) standing for the panel right after a
+    size ("a 2 ft wide 1", "the 4x8 one"): the noun, never a size of 1 ft.
+
+    >>> is_noun_one(["a", "2", "ft", "wide", "1"], 4), is_noun_one(["the", "4x8", "one"], 2), is_noun_one(["1", "by", "2"], 0)
+    (True, True, False)
+    """
+    if i <= 0 or normalise(words[i]) not in ("one", "1"):
+        return False
+    before = normalise(words[i - 1])
+    return before in _SIZE_ENDS or before.endswith("-footer") or len(numbers_in(words[i - 1])) >= 2
+
+
+def says_a_size(words: Sequence[str]) -> bool:
+    """Whether the words say a panel size "A by B", in one word or three ("4x8", "four-by-eight", "2 by 8"), whatever
+    their tags: a size the tagger missed is still a panel the worker named.
+
+    >>> says_a_size("lay one of the four by eight sheets".split()), says_a_size(["the", "4x8"]), says_a_size(["4", "studs"])
+    (True, True, False)
+    """
+    norm = [normalise(w) for w in words]
+    if any(len(numbers_in(w)) >= 2 and not w.isdigit() for w in norm):
+        return True
+    return any(norm[i + 1] in ("by", "x") and len(numbers_in(norm[i])) == 1 and len(numbers_in(norm[i + 2])) == 1
+               for i in range(len(norm) - 2))
+
+
 def counts_in(words: Sequence[str]) -> list[int]:
     """Every count said, in order: ordinals and numbers ("second", "two", "2nd", "zero", "0").
 

@@ -27,7 +27,9 @@ information-mapping rules against the site and the action history, and then:
 
    The other readings within the margin must say their placement too: one whose placement tag sits on words that
    cannot say it ("lol" tagged ``Hr_btm``; ``placement_words_say_it``) is no reading of these words, so it is no
-   rival and asks nothing.
+   rival and asks nothing. Nor is one whose own words name two panels or studs, one of them the best reading's
+   command ("Unit two, a full sheet on 500103" with "two" read as a width): it is torn between that command and another,
+   which is no reading against the command (``two_meanings``).
 2. **A second reading would be safer**: the best reading is ``undetermined`` (a missed tag), and
    readings within the margin give exactly one command, with at least ``recover`` of the probability:
    the robot takes that reading (the most probable one that is determined and feasible on the site), provided it
@@ -36,7 +38,13 @@ information-mapping rules against the site and the action history, and then:
    is not sure enough. The message says what was understood and asks one question ("Did you mean
    panel 500321 on stud 500104 on its centre line, or on its left line?"). History and site untouched.
 4. A reading that the site refuses (overlap, buried panel, ...) is refused with the IM's own message
-   unless a feasible reading within the margin is likely enough to be worth a question.
+   unless a feasible reading within the margin is likely enough to be worth a question. When the refused reading's
+   placement goes against a word that says how the panel goes (no row although "laid" is said, a row although
+   "stands" is; ``placement_contradicted``) and the one command within the margin comes from a reading that differs
+   from it only in the placement tags and agrees with that word, the robot takes that reading as in step 2 (same
+   ``recover`` probability, same word checks). So too when the best reading is a command whose placement goes
+   against such a word ("the 4x6 lies along the floor from 500102", row words missed): rather than ask, the
+   robot takes the reading that says it lies, if it is the only command the readings that agree with the words give.
 
 5. **Nothing rests on an unanswered question** (``pending``, in an episode): after the robot asked about an
    instruction (``unclear``) and before it next acts, a command that would be another one had the robot carried
@@ -370,6 +378,18 @@ def lying_unread(outcome: Outcome, words: Sequence[str], tags: Sequence[str]) ->
     return why, _confirm(outcome, words, lying), [outcome]
 
 
+def placement_contradicted(words: Sequence[str], tags: Sequence[str]) -> bool:
+    """Whether a reading's placement goes against a word that says how the panel goes: no row tag although a word says
+    it lies ("the 2x8 laid along the floor at 500104", the row words missed), or a row although a word says it stands
+    ("keep the top clear , the 4x6 stands on 500102" with "top" read as the top row)."""
+    rows = {"Hr_top", "Hr_btm"}.intersection(tags)
+    return bool(W.upright_words(words, tags)) if rows else bool(W.lying_words(words, tags))
+
+
+def _differs_in_placement_only(tags: Sequence[str], other: Sequence[str]) -> bool:
+    return all(a == b or {a, b} <= set(PLACEMENT_TAGS) | {"O"} for a, b in zip(tags, other))
+
+
 # --- the decision ------------------------------------------------------------------------------------------
 def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], marginals: np.ndarray,
            labels: Sequence[str], history: ActionHistory | None = None,
@@ -407,6 +427,15 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         return Decision(words, list(reading.tags), result, mass.get(reading.outcome, 0.0), action, readings,
                         list(options))
 
+    def torn_towards(rival: Reading, outcome: Outcome) -> bool:
+        """Whether a rival's own words name two panels or studs, one of them giving ``outcome`` ("Unit two, a full
+        sheet on 500103" read with "two" as a width and "full" as the size word): it would ask between them, so it is no
+        reading against ``outcome``."""
+        if not settings.word_checks:
+            return False
+        torn = two_meanings(rival.outcome, words, rival.read_tags, history)
+        return torn is not None and outcome in torn[2]
+
     def word_checks(reading: Reading) -> tuple[str, str, list[Outcome]] | None:
         """The three checks of a reading against its own words (step 1), or None when it passes them or they are off."""
         if not settings.word_checks:
@@ -415,8 +444,26 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
                 or placement_unsaid(reading.outcome, words, reading.read_tags, history, interpret)
                 or lying_unread(reading.outcome, words, reading.read_tags))
 
+    def placed_instead() -> Reading | None:
+        """Step 4's reading for a best one whose placement goes against its words: the one command within the margin
+        of the readings that differ from the best only in the placement tags and agree with the words, when no other
+        reading that agrees with them gives another command; None otherwise."""
+        if not settings.word_checks or not placement_contradicted(words, best.read_tags):
+            return None
+        agree = [r for r in within[1:] if r.outcome[0] == "command" and not placement_contradicted(words, r.read_tags)]
+        placed = [r for r in agree if _differs_in_placement_only(best.read_tags, r.read_tags)]
+        if not placed or len({r.outcome for r in agree}) != 1 or mass[placed[0].outcome] < settings.recover:
+            return None
+        return placed[0] if word_checks(placed[0]) is None else None
+
     if best.outcome[0] == "command":
-        others = [o for o in rival_commands if o != best.outcome]
+        placed = placed_instead()
+        if placed is not None:
+            return finish(placed, "recover",
+                          f"the best reading's placement goes against the words; the reading that differs only in the "
+                          f"placement and says it as the words do gives one command, p={mass[placed.outcome]:.3f}")
+        others = list(dict.fromkeys(r.outcome for r in within[1:] if r.outcome[0] == "command"
+                                    and r.outcome != best.outcome and not torn_towards(r, best.outcome)))
         if others:
             return finish(best, "ask", "two readings give different commands",
                           Refusal("unclear", question_between(best.outcome, others[0])), [best.outcome, others[0]])
@@ -456,6 +503,11 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
             return finish(chosen, "recover",
                           f"the best reading is undetermined; the next reading within the margin gives one command, "
                           f"p={mass[first]:.3f}")
+        placed = placed_instead() if reason != "undetermined" else None
+        if placed is not None:
+            return finish(placed, "recover",
+                          f"refused ({reason}), but its placement goes against the words; the reading that differs only "
+                          f"in the placement and says it as the words do gives one command, p={mass[placed.outcome]:.3f}")
         if mass[first] >= settings.question:
             message = best.interpretation.refusal.message if reason != "undetermined" else None
             question = _confirm(first, words, [])

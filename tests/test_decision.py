@@ -12,7 +12,7 @@ from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, completions, decide, decide_episode,
                                   decide_rows, decide_tags, decision_scores, not_carried_out, outcome_of, play_episode,
                                   lying_unread, placement_unsaid, placement_words_say_it, question_between, risk_coverage, second_opinion, step_outcome,
-                                  two_meanings)
+                                  placement_contradicted, two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
 from drywall_lab.splits import ALL_SPLITS, split_rows
@@ -576,3 +576,60 @@ def test_a_size_the_tagger_missed_still_says_the_panel():
     refused = decide_tags(words, tags, TAGS, history)
     assert refused.refusal.reason == "undetermined"
     assert {o[1] for o in completions(refused, history, "said")} == {"500320", "500321", "500322"}
+
+
+def test_a_word_that_only_points_back_names_no_second_panel():
+    """"another 2x8" after a 4 x 8: the guidelines tag "another" ``dim`` only when nothing else names the panel, so a
+    tagger's ``another/dim`` beside the size is no second panel to ask about; "same size as the last one" still is."""
+    history = ActionHistory()
+    history.record(interpret(*_wt("500320/ID_wall on 500100/ID_stud"), history).command)
+    words, tags = _wt("another/dim 2x8/width on 500105/ID_stud")
+    outcome = outcome_of(interpret(words, tags, history))
+    assert outcome[1] == "500321" and two_meanings(outcome, words, tags, history) is None
+    words, tags = _wt("the 2x8/width , same/dim size as the last/dim one , on 500105/ID_stud")
+    outcome = outcome_of(interpret(words, tags, history))
+    assert two_meanings(outcome, words, tags, history) is not None
+
+
+def test_a_rival_torn_between_the_command_and_another_is_no_rival():
+    """"Unit two, a full sheet on 500103": a rival that reads "two" as a width names two panels (the 2 ft one and the
+    full one, the best reading's): it would ask between them, so it does not stop the action. A rival that names the
+    2 ft panel alone still does."""
+    words, best = _wt("Unit two , a full/dim sheet on 500103/ID_stud")
+    torn = ["width" if w == "two" else t for w, t in zip(words, best)]
+    d = decide(words, [(best, math.log(0.9)), (torn, math.log(0.05))], _sure(best), TAGS)
+    assert d.action == "act" and d.command.drywall_id == "500320"
+    alone = ["O" if t == "dim" else t for t in torn]
+    d = decide(words, [(best, math.log(0.9)), (alone, math.log(0.05))], _sure(best), TAGS)
+    assert d.action == "ask" and {o[1] for o in d.options} == {"500320", "500321"}
+
+
+def test_a_placement_that_goes_against_the_words_takes_the_reading_that_says_it():
+    """"the 2x8 laid along the floor at 500104" with the row words missed: standing it up goes against "laid". The
+    reading that differs only in the placement and says the bottom row is taken, whether the upright one is a command
+    (step 1 would ask) or refused by the site (step 4). Not when another reading that agrees with the words gives
+    another command."""
+    words, upright = _wt("the 2x8/width laid along the floor at 500104/ID_stud")
+    row = ["Hr_btm" if w == "floor" else t for w, t in zip(words, upright)]
+    assert placement_contradicted(words, upright) and not placement_contradicted(words, row)
+    d = decide(words, [(upright, math.log(0.7)), (row, math.log(0.25))], _sure(upright), TAGS)
+    assert d.action == "recover" and d.command.placement.value == "horizontal_bottom"
+    assert "goes against the words" in str(d.interpretation.trace)
+    # the upright reading refused by the site: a 4 x 6 already lies in the top row from 500104
+    history = ActionHistory()
+    history.record(interpret(*_wt("500322/ID_wall on 500104/ID_stud top/Hr_top row/Hr_top"), history).command)
+    d = decide(words, [(upright, math.log(0.7)), (row, math.log(0.25))], _sure(upright), TAGS, history)
+    assert d.action == "recover" and d.command.as_contract() == {
+        "drywall_id": "500321", "stud_id": "500104", "placement": "horizontal_bottom"}
+    # another reading that says it lies, on another stud: no single command to take, so the robot asks
+    words, upright = _wt("the 2x8/width laid along the floor at 500104/ID_stud or 500102")
+    row = ["Hr_btm" if w == "floor" else t for w, t in zip(words, upright)]
+    other = ["ID_stud" if w == "500102" else "O" if w == "500104" else t for w, t in zip(words, row)]
+    d = decide(words, [(upright, math.log(0.6)), (row, math.log(0.2)), (other, math.log(0.15))], _sure(upright), TAGS)
+    assert d.action == "ask"
+    # a word that says it stands goes against a row: "keep the top clear , the 4x6 stands on 500102"
+    words, rowed = _wt("keep the top/Hr_top clear , the 4x6/width stands on 500102/ID_stud")
+    plain = ["O" if t == "Hr_top" else t for t in rowed]
+    assert placement_contradicted(words, rowed) and not placement_contradicted(words, plain)
+    d = decide(words, [(rowed, math.log(0.7)), (plain, math.log(0.25))], _sure(rowed), TAGS)
+    assert d.action == "recover" and d.command.placement.value == "vertical_left"

@@ -219,6 +219,15 @@ TARGETS = [
      "500312"),
     # the first rule that applies wins: an id over a size
     ("panel 500311/ID_wall , the 4/width by 8/length", (), "500311"),
+    # a word that only points back is no size when other words name the panel (guidelines: dim only when nothing
+    # else does): "another 2x8" is the 2x8, "one of those from the right pile" the right pile, even after a 4 x 8
+    ("another/dim 2x8/width on 500105", (("500320", "500100", "vertical_left"),), "500321"),
+    ("one of those/dim from the right/Dw_loc1 pile", (("500320", "500100", "vertical_left"),), "500322"),
+    ("again/dim the panel 500312/ID_wall", (("500320", "500100", "vertical_left"),), "500312"),
+    ("another/dim full/dim sheet", (("500321", "500100", "vertical_left"),), "500320"),  # one more of the standard
+    # ... but alone it is the last panel's size, and "same size as the last one" is always a back-reference
+    ("another/dim one of those/dim", (("500321", "500100", "vertical_left"),), "500311"),
+    ("same/dim size as the last/dim one", (("500321", "500100", "vertical_left"),), "500311"),
 ]
 
 
@@ -269,6 +278,8 @@ TARGET_REFUSALS = [
      (("500320", "500100", "vertical_left"),), "undetermined"),
     ("the 2/width by 8/length panel", (("500321", "500100", "vertical_left"), ("500311", "500102", "vertical_left"),
                                         ("500301", "500104", "vertical_left")), "stack_empty"),
+    # "again" says one more of the same, never a stack to count away from
+    ("the left/Dw_loc1 pile , top row again/Dw_loc2", (("500321", "500100", "vertical_left"),), "undetermined"),
 ]
 
 
@@ -677,9 +688,9 @@ def test_only_the_final_intention_counts(markup, history, expected):
 
 
 @pytest.mark.parametrize("markup, reason", [
-    # a tagged word five words after the correction is no correction: the reason for it ("bottom of the pile")
-    ("500310/ID_wall across the top/Hr_top of 500100/ID_stud wait that one is at the bottom/Hr_btm of the pile",
-     "undetermined"),
+    # a tagged word five words after the correction is no correction: the reason for it ("sits low on the wall")
+    ("500320/ID_wall across the top/Hr_top from 500100/ID_stud , wait , because the switch box sits low/Hr_btm on "
+     "the wall", "undetermined"),
     # without correction words the two counts stay two counts
     ("the 4x8/width second/St_loc1 from/St_loc1 the/St_loc1 right/St_loc1 fourth/St_loc1 from/St_loc1 the/St_loc1 "
      "right/St_loc1", "undetermined"),
@@ -1000,3 +1011,33 @@ def test_a_correction_only_ever_reads_tags_as_o(words_tags):
     ti = TaggedInstruction(words, tags)  # it reads punctuation as O first, so it may take back less than ``back``
     assert all(t == "O" for i, t in enumerate(ti.tags) if i in ti.taken_back)
     assert set(ti.taken_back) <= set(back) or any(W.is_punctuation(w) for w in words)
+
+
+@pytest.mark.parametrize("markup, expected", [
+    # a row word that names a place in a stack is read as O: the panel is the one on top as always
+    ("the 2x8/width off the top/Hr_top of the middle pile on 500105/ID_stud", ("500321", "500105", "vertical_left")),
+    ("500320/ID_wall on 500100/ID_stud along the top/Hr_top , the one under it at the bottom/Hr_btm of the stack is "
+     "cracked", ("500320", "500100", "horizontal_top")),
+    # the top of the wall is a row
+    ("the 2x8/width along the top/Hr_top of the wall from 500105/ID_stud", ("500321", "500105", "horizontal_top")),
+])
+def test_a_place_in_a_stack_is_no_row(markup, expected):
+    words, tags = _raw(markup)
+    result = interpret(words, tags)
+    assert result.command is not None, result.summary()
+    assert (result.command.drywall_id, result.command.stud_id, result.command.placement.value) == expected
+    placed_in_stack = [step for step in result.trace if step.rule == "R0 place in a stack"]
+    assert bool(placed_in_stack) == ("stack" in words or "pile" in words)
+
+
+def test_word_readings_for_the_decision_checks():
+    # the words that say a panel stands, as lying_words reads lying ones: none after a take-back or a lying word
+    assert W.upright_words("the 4x6 stands on 500102".split()) == [2]
+    assert W.upright_words("lying down , not upright".split()) == []
+    # back-reference words that say the size is the same, and those that only point back
+    assert W.says_same_size(["same"]) and W.says_same_size(["like", "previous"])
+    assert not W.says_same_size(["another"]) and not W.says_same_size(["those"])
+    assert W.only_repeats(["again"]) and not W.only_repeats(["last", "again"]) and not W.only_repeats(["500104"])
+    # a place in a stack, never the top of the wall
+    assert W.stack_place("take it off the top of the left stack".split()) == [4, 5, 6, 7, 8]
+    assert W.stack_place("along the top of the wall".split()) == []

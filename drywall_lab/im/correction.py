@@ -18,8 +18,8 @@ a tagged instruction as the guidelines mean it (``taken_back``):
   untagged words ("not upright but ...", "not the default , ...") or of the only mention of a part ("why is it not on
   500100 yet?") rules nothing out; nor does a double negation ("don't forget the centre line").
 
-The correction words must come right before what they say again: "Wait, that one is at the bottom of the pile"
-says why, and a tagged "bottom" five words on is not taken as a new placement. Gold tags never tag abandoned words,
+The correction words must come right before what they say again: "wait, because the switch box sits low on the wall"
+says why, and a tagged "low" six words on is not taken as a new placement. Gold tags never tag abandoned words,
 so the rule changes nothing on them (tested on every split); the trace names what it took back.
 """
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """From tagged words to a robot command or a refusal: the IM module (the paper's Fig. 1).
 
 ``interpret`` reads the tags as the guidelines mean them (a word of punctuation, a stud
-spacing, or a word a change of mind took back, is ``O``: ``TaggedInstruction``; the trace's
+spacing, a place in a stack, or a word a change of mind took back, is ``O``: ``TaggedInstruction``; the trace's
 ``R0`` steps name what was read so), runs the target rules (Figs. 10-11), the destination rules
 (Fig. 12) and the placement rule, then checks that the robot can carry the command out (the
 panel can be picked; it fits on the wall). It changes nothing: ``InformationMapper``
@@ -80,6 +80,10 @@ def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory 
         trace.add("reading", "R0 stud spacing", True,
                   conclusion=f"{W.quote([ti.words[i] for i in ti.spacing])} is the stud spacing (how the wall is "
                              "framed), not the placement: read as O")
+    if ti.in_stack:
+        trace.add("reading", "R0 place in a stack", True,
+                  conclusion=f"{W.quote([ti.words[i] for i in ti.in_stack])} names a place in a stack, not a row "
+                             "on the wall: read as O")
     if ti.taken_back:
         trace.add("reading", "R0 final intention", True, conclusion=_taken_back_text(ti))
     ctx = MappingContext(site, history.state, history.last)

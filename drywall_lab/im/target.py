@@ -9,7 +9,8 @@ Five rules, tried in order; the first that applies decides:
    panel ("a 2 ft wide 1"), and a number before a whole "A by B" counts panels ("three 2 by 8s").
 3. ``dim``: a size word ("full-size", "standard", "regular size") is the standard 4 x 8; a
    back-reference ("same as the previous one") is the size of the last installed panel. A
-   lone "size" or "sized" names no size: the rule does not apply.
+   lone "size" or "sized" names no size: the rule does not apply; nor does a word that only
+   points back ("another", "one of those") when other words name the panel ("another 2x8").
 4. ``Dw_loc1`` alone: a stack named by its position (left/middle/right, first/second/third,
    "first from the right"). What the rule cannot place with certainty is refused as
    ``undetermined``, never read by dropping a word: an ordinal with a side but no "from"
@@ -144,21 +145,38 @@ def target_by_size(ti: TaggedInstruction, ctx: MappingContext) -> Decision | Non
 def target_by_dim(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
     """Rule 3 (Fig. 10): "full-size"/"standard" is the 4 x 8; "same as last time" is the last panel's size.
 
-    A lone "size" or "sized" says a size is meant but not which: the rule does not apply.
+    A lone "size" or "sized" says a size is meant but not which: the rule does not apply. Nor does a word that
+    points back without saying the size is the same ("another", "one of those", "again"; ``words.says_same_size``)
+    when other words name the panel ("another 2x8", "one of those from the right pile"): the guidelines tag it
+    ``dim`` only when nothing else does.
     """
     said = ti.words_with("dim")
     if not said:
         return None
     quoted = W.quote(ti.phrase("dim"))
+    loose = W.back_reference_words(said) and not W.says_same_size(said)
+    if loose and (W.standard_size_words(said) or _named_otherwise(ti)):
+        if W.standard_size_words(said):  # "another full sheet": one more of the standard size
+            return top_of(ctx, _standard_stack(ctx), f"{quoted}: the standard size")
+        return None  # "another 2x8", "one of those from the right pile": the other words name the panel
     if W.back_reference_words(said):
         last = ctx.require_last(quoted)
         size = ctx.site.panel(last["drywall_id"]).size_ft
         stack = _stacks_of_size(ctx, *size)[0]
         return top_of(ctx, stack, f"{quoted}: the size of the last installed panel {last['drywall_id']} ({_size_text(size)})")
     if W.standard_size_words(said):
-        standard = [p.stack for p in ctx.site.panels if p.size_name == "standard"][0]
-        return top_of(ctx, standard, f"{quoted}: the standard size")
+        return top_of(ctx, _standard_stack(ctx), f"{quoted}: the standard size")
     return None
+
+
+def _standard_stack(ctx: MappingContext) -> str:
+    return [p.stack for p in ctx.site.panels if p.size_name == "standard"][0]
+
+
+def _named_otherwise(ti: TaggedInstruction) -> bool:
+    """Whether words other than ``dim`` name the panel: an id, a size with a number, a stack position."""
+    return (ti.has("ID_wall", "Dw_loc1")
+            or any(W.numbers_in(w) for w in ti.words_with(*SIZE_TAGS)))
 
 
 # --- rule 4 ---------------------------------------------------------------------------
@@ -208,7 +226,7 @@ def target_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> D
     if ids:
         anchor = ctx.site.panel(ids[0])
         anchor_text = f"panel {anchor.drywall_id}"
-    elif W.points_back(anchor_words):
+    elif W.points_back(anchor_words) and (count == 0 or not W.only_repeats(anchor_words)):  # not "right ... again"
         last = ctx.require_last(W.quote(anchor_words))
         anchor = ctx.site.panel(last["drywall_id"])
         anchor_text = f"the previous panel {anchor.drywall_id}"

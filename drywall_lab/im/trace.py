@@ -6,7 +6,7 @@ from typing import Any, Callable, Sequence
 
 import pandas as pd
 
-from drywall_lab.corpus.tags import COREF_TAGS
+from drywall_lab.corpus.tags import COREF_TAGS, PLACEMENT_TAGS
 from drywall_lab.errors import Refusal
 from drywall_lab.im import words as W
 from drywall_lab.im.correction import taken_back
@@ -29,7 +29,9 @@ class TaggedInstruction:
     "the second from the right, no, the fourth from the right"): only the final intention counts
     (guidelines 4.7). ``taken_back`` keeps which words those were, and what took each back. The
     words of a stud spacing ("16 in on centre", ``words.stud_spacing``; kept in ``spacing``) are
-    read as ``O`` too: they say how the wall is framed, never the centre-line placement.
+    read as ``O`` too: they say how the wall is framed, never the centre-line placement; and so are
+    the placement tags of a place in a stack ("the 2x8 off the top of the middle pile", ``words.stack_place``;
+    kept in ``in_stack``): it says which panel, or why, never the row.
     """
 
     words: tuple[str, ...]
@@ -38,6 +40,8 @@ class TaggedInstruction:
     taken_back: dict[int, str] = field(init=False, repr=False, compare=False)
     #: The positions of a stud spacing phrase whose tags were read as ``O`` (empty when none of them was tagged).
     spacing: tuple[int, ...] = field(init=False, repr=False, compare=False)
+    #: The positions of a place in a stack ("off the top of the middle pile") whose placement tags were read as ``O``.
+    in_stack: tuple[int, ...] = field(init=False, repr=False, compare=False)
     #: Where each tag stands (tag -> word positions): the rules ask for it thousands of times per decision.
     _positions: dict[str, list[int]] = field(init=False, repr=False, compare=False)
 
@@ -54,11 +58,15 @@ class TaggedInstruction:
         spacing = spacing if any(tags[i] not in W.UNTAGGED for i in spacing) else ()
         if spacing:
             tags = tuple("O" if i in spacing else t for i, t in enumerate(tags))
+        in_stack = tuple(i for i in W.stack_place(words) if tags[i] in PLACEMENT_TAGS)
+        if in_stack:
+            tags = tuple("O" if i in in_stack else t for i, t in enumerate(tags))
         back = taken_back(words, tags)
         if back:
             tags = tuple("O" if i in back else t for i, t in enumerate(tags))
         object.__setattr__(self, "taken_back", back)
         object.__setattr__(self, "spacing", spacing)
+        object.__setattr__(self, "in_stack", in_stack)
         object.__setattr__(self, "words", words)
         object.__setattr__(self, "tags", tags)
         positions: dict[str, list[int]] = {}

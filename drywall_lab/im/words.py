@@ -68,6 +68,10 @@ BACK_REFERENCE_WORDS = frozenset({
 #: ``BACK_REFERENCE_WORDS`` is said ("three right of that/St_loc2 one", "of where/St_loc2 you put it", "the pile that/Dw_loc2
 #: one came/Dw_loc2 from"; guidelines 4.7): an anchor is always a piece already handled, and these name no other.
 ANCHOR_POINTING_WORDS = frozenset({"that", "it", "where", "came", "went"})
+#: Back-reference words that say the *size* is the same ("same size as the previous one", "like the last one",
+#: "matching", "ditto"). The others point back without saying so ("another", "again", "one of those", "last"): the
+#: guidelines tag them ``dim`` only when nothing else names the panel ("another 2x8" is the 2x8).
+SAME_SIZE_WORDS = frozenset({"same", "like", "match", "matching", "matches", "previous", "previously", "ditto"})
 #: Size words that name the standard 4 x 8 panel (spec section 3, target rule 3).
 STANDARD_SIZE_WORDS = frozenset({"full-size", "full-sized", "fullsize", "full", "standard", "regular", "normal",
                                  "whole", "standard-size"})
@@ -304,6 +308,24 @@ def lying_words(words: Sequence[str], tags: Sequence[str] | None = None) -> list
     return [i for i in lying if any(abs(i - j) <= LYING_REACH for j in tagged)]
 
 
+def upright_words(words: Sequence[str], tags: Sequence[str] | None = None) -> list[int]:
+    """Where the words say the panel stands ("standing up", "upright", ``UPRIGHT_WORDS``), as ``lying_words`` reads
+    lying words: none when a word takes something back or says it lies; with ``tags``, only those within
+    ``LYING_REACH`` words of a tagged word.
+
+    >>> upright_words("the 2x8 goes standing on 500100".split()), upright_words("lying down , not upright".split())
+    ([3], [])
+    """
+    said = [normalise(w) for w in words]
+    if any(w in TAKE_BACK_WORDS or w in LYING_WORDS for w in said):
+        return []
+    upright = [i for i, w in enumerate(said) if w in UPRIGHT_WORDS]
+    if tags is None or not upright:
+        return upright
+    tagged = [j for j, t in enumerate(tags) if t not in UNTAGGED]
+    return [i for i in upright if any(abs(i - j) <= LYING_REACH for j in tagged)]
+
+
 #: The stud spacings of framing (inches on centre): "16 in on centre", "sixteen-inch centres", "24 o.c.".
 SPACING_INCHES = frozenset({12, 16, 24})
 _SPACING_UNITS = frozenset({"in", "inch", "inches"})
@@ -334,6 +356,32 @@ def stud_spacing(words: Sequence[str]) -> list[int]:
             out.extend(range(i, j + 1))
         elif j + 1 < len(norm) and norm[j] == "on" and norm[j + 1] in CENTRE_WORDS | _SPACING_CENTRES:
             out.extend(range(i, j + 2))
+    return out
+
+
+#: The nouns of a stack (field corpus ``STACK_NOUNS``, "stack", "pile", ...): "the top of the left stack" is a place in it.
+STACK_WORDS = frozenset({"stack", "stacks", "pile", "piles", "pallet", "bunch", "lot"})
+
+
+def stack_place(words: Sequence[str]) -> list[int]:
+    """Where a row word names a place in a stack, not a row on the wall ("whatever is on top of the left stack", "the one
+    at the bottom of the stack is cracked"): the positions of the row word, ``of`` and the words up to the stack's noun,
+    which say which panel is meant or why, never the placement (guidelines 4.7).
+
+    >>> stack_place("the one at the bottom of the stack is cracked".split()), stack_place("the bottom of the wall".split())
+    ([4, 5, 6, 7], [])
+    """
+    norm = [normalise(w) for w in words]
+    if STACK_WORDS.isdisjoint(norm):
+        return []
+    out: list[int] = []
+    for i, w in enumerate(norm[:-2]):
+        if w not in TOP_ROW_WORDS | BOTTOM_ROW_WORDS or norm[i + 1] != "of":
+            continue
+        for j in range(i + 2, min(i + 6, len(norm))):
+            if norm[j] in STACK_WORDS:
+                out.extend(range(i, j + 1))
+                break
     return out
 
 
@@ -380,10 +428,27 @@ def back_reference_words(words: Iterable[str]) -> list[str]:
     return [w for w in words if normalise(w) in BACK_REFERENCE_WORDS]
 
 
+def says_same_size(words: Iterable[str]) -> bool:
+    """Whether back-reference words say the size is the same as before (``SAME_SIZE_WORDS``: "same size as the last
+    one", "like the previous one"), not only that the worker points back ("another", "one of those", "again")."""
+    return any(normalise(w) in SAME_SIZE_WORDS for w in words)
+
+
 def points_back(anchor_words: Iterable[str]) -> bool:
     """Whether an anchor's words point back at the last accepted command: a back-reference word ("previous", "the
     one you just used") or, in an anchor only, a pointing word ("that one", "where you put it", ``ANCHOR_POINTING_WORDS``)."""
     return any(_points_back(normalise(w)) for w in anchor_words)
+
+
+#: Back-reference words that say "one more of the same", never a piece to count *away* from: "the same stud again" is
+#: the last stud, but "right of ... again" has no anchor ("left pile , top row again" with "again" tagged ``Dw_loc2``).
+REPEAT_WORDS = frozenset({"again", "another", "ditto"})
+
+
+def only_repeats(anchor_words: Iterable[str]) -> bool:
+    """Whether an anchor's words that point back are all ``REPEAT_WORDS`` ("again"): they anchor "the same" only."""
+    pointing = [normalise(w) for w in anchor_words if _points_back(normalise(w))]
+    return bool(pointing) and all(w in REPEAT_WORDS for w in pointing)
 
 
 def _points_back(normalised: str) -> bool:

@@ -29,7 +29,12 @@ information-mapping rules against the site and the action history, and then:
    cannot say it ("lol" tagged ``Hr_btm``; ``placement_words_say_it``) is no reading of these words, so it is no
    rival and asks nothing. Nor is one whose own words name two panels or studs, one of them the best reading's
    command ("Unit two, a full sheet on 500103" with "two" read as a width): it is torn between that command and another,
-   which is no reading against the command (``two_meanings``).
+   which is no reading against the command (``two_meanings``). Nor one that reads only what a change of mind in the
+   best reading took back ("the right stack. Scratch that, the left stack" read with "right"; guidelines 4.7:
+   ``reads_what_was_taken_back``), nor, when the best reading's placement agrees with the words, one whose placement
+   goes against a word that says how the panel goes ("lying down" read upright; ``placement_contradicted``), nor one
+   that leaves untagged the row phrase the best reading takes its row from ("top row", "bottom-row";
+   ``leaves_out_a_row_phrase``).
 2. **A second reading would be safer**: the best reading is ``undetermined`` (a missed tag), and
    readings within the margin give exactly one command, with at least ``recover`` of the probability:
    the robot takes that reading (the most probable one that is determined and feasible on the site), provided it
@@ -94,6 +99,7 @@ import numpy as np
 from drywall_lab.corpus.tags import DESTINATION_TAGS, PLACEMENT_TAGS, TARGET_TAGS
 from drywall_lab.errors import Refusal
 from drywall_lab.im import ActionHistory, Interpretation, RobotCommand, Trace
+from drywall_lab.im.correction import PARTS
 from drywall_lab.im import interpret as im_interpret
 from drywall_lab.im import words as W
 from drywall_lab.im.context import MappingContext
@@ -386,6 +392,41 @@ def placement_contradicted(words: Sequence[str], tags: Sequence[str]) -> bool:
     return bool(W.upright_words(words, tags)) if rows else bool(W.lying_words(words, tags))
 
 
+def reads_what_was_taken_back(words: Sequence[str], best: Reading, rival: Reading) -> bool:
+    """Whether a rival reads, for some part (panel, stud, placement), none of the words the best reading reads for it,
+    and only words that a change of mind takes back once both are read together ("the right stack . Scratch that ,
+    the left stack" with "right" tagged and "left" not): it acts on what the worker abandoned, which the guidelines
+    never tag (4.7), so it is no reading of the words."""
+    for part_tags in PARTS.values():
+        theirs = {i for i, t in enumerate(rival.read_tags) if t in part_tags}
+        ours = {i for i, t in enumerate(best.read_tags) if t in part_tags}
+        if not theirs or not ours or theirs & ours:
+            continue
+        both = [rival.read_tags[i] if i in theirs else t for i, t in enumerate(best.tags)]  # read together
+        if theirs <= set(TaggedInstruction(words, both).taken_back):
+            return True
+    return False
+
+
+_NEGATING = frozenset({"skip", "without", "forget", "except", "but", "instead"})
+
+
+def leaves_out_a_row_phrase(words: Sequence[str], best: Reading, rival: Reading) -> bool:
+    """Whether the best reading takes its row from a row phrase ("top row", "the next bottom-row sheet";
+    ``words.row_phrases``), which the guidelines always tag as the placement, and a rival leaves that phrase untagged
+    and says no row: it reads the words less fully than the best one, so it is no rival. Not when a negation or a
+    take-back word comes just before the phrase ("skip the top row"): then the rival may be right to leave it."""
+    norm = [W.normalise(w) for w in words]
+    for phrase in W.row_phrases(words):
+        if any(w in W.TAKE_BACK_WORDS or w in _NEGATING for w in norm[max(0, phrase[0] - 3):phrase[0]]):
+            continue  # "skip the top row", "no, not the bottom row": the phrase may be what the worker rules out
+        row = best.read_tags[phrase[0]]
+        if row in ("Hr_top", "Hr_btm") and all(best.read_tags[i] == row for i in phrase):
+            if all(rival.read_tags[i] == "O" for i in phrase) and row not in rival.read_tags:
+                return True
+    return False
+
+
 def _differs_in_placement_only(tags: Sequence[str], other: Sequence[str]) -> bool:
     return all(a == b or {a, b} <= set(PLACEMENT_TAGS) | {"O"} for a, b in zip(tags, other))
 
@@ -411,7 +452,8 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
     best = readings[0]
     # A rival must say its placement: "lol" tagged Hr_btm is no reading of the words (step 1).
     within = [best] + [r for r in readings[1:] if r.logprob >= best.logprob - settings.margin
-                       and (not settings.word_checks or placement_words_say_it(words, r.read_tags))]
+                       and (not settings.word_checks or (placement_words_say_it(words, r.read_tags)
+                                                         and not reads_what_was_taken_back(words, best, r)))]
     mass = _mass(readings)
     rival_commands = list(dict.fromkeys(r.outcome for r in within if r.outcome[0] == "command"))
 
@@ -462,8 +504,11 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
             return finish(placed, "recover",
                           f"the best reading's placement goes against the words; the reading that differs only in the "
                           f"placement and says it as the words do gives one command, p={mass[placed.outcome]:.3f}")
+        sound = settings.word_checks and not placement_contradicted(words, best.read_tags)
         others = list(dict.fromkeys(r.outcome for r in within[1:] if r.outcome[0] == "command"
-                                    and r.outcome != best.outcome and not torn_towards(r, best.outcome)))
+                                    and r.outcome != best.outcome and not torn_towards(r, best.outcome)
+                                    and not (sound and placement_contradicted(words, r.read_tags))
+                                    and not (settings.word_checks and leaves_out_a_row_phrase(words, best, r))))
         if others:
             return finish(best, "ask", "two readings give different commands",
                           Refusal("unclear", question_between(best.outcome, others[0])), [best.outcome, others[0]])

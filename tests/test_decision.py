@@ -520,8 +520,7 @@ def test_a_command_asked_about_that_would_make_the_instruction_impossible_is_no_
     """Asked "lying in the bottom row, or upright?", the worker goes on with a full sheet in the top row: upright,
     the first panel would be in its way, lying it is not. The words fit the lying one, which leaves the command as it
     is: the robot acts. Asked about the upright one alone, it asks."""
-    lying, lying_tags = _wt("the 4/width by 6/length panel lying down at stud 500102/ID_stud in the bottom/Hr_btm "
-                            "row/Hr_btm")
+    lying, lying_tags = _wt("the 4/width by 6/length panel along the bottom/Hr_btm from stud 500102/ID_stud")
     upright = ["O" if t == "Hr_btm" else t for t in lying_tags]
     top, top_tags = _wt("a standard/dim sheet in the top/Hr_top row/Hr_top at 500100/ID_stud")
     decisions = play_episode([lying, top], [_unsure(lying, lying_tags, upright), _Gold(top_tags)], TAGS, ActionHistory())
@@ -633,3 +632,33 @@ def test_a_placement_that_goes_against_the_words_takes_the_reading_that_says_it(
     assert placement_contradicted(words, rowed) and not placement_contradicted(words, plain)
     d = decide(words, [(rowed, math.log(0.7)), (plain, math.log(0.25))], _sure(rowed), TAGS)
     assert d.action == "recover" and d.command.placement.value == "vertical_left"
+
+
+def test_rivals_that_read_the_words_less_fully_are_no_rivals():
+    """Three kinds of rival that go against the words the best reading follows: one that reads only what a change of
+    mind took back ("the right stack . Scratch that , the left stack" read with "right"), one that stands up a panel
+    the words say lies, and one that leaves out the row phrase the best reading takes its row from ("the next
+    bottom-row sheet"). The robot acts on the best reading. A row phrase right after a negation ("skip the top row")
+    may well be left out: that rival still asks."""
+    words, best = _wt("take the one from the right stack . Scratch that , the left/Dw_loc1 stack . On 500100/ID_stud")
+    abandoned = ["Dw_loc1" if w == "right" else "O" if w == "left" else t for w, t in zip(words, best)]
+    d = decide(words, [(best, math.log(0.8)), (abandoned, math.log(0.1))], _sure(best), TAGS)
+    assert d.action == "act" and d.command.drywall_id == "500320"
+    taken_back = ["Dw_loc1" if w == "right" else t for w, t in zip(words, best)]  # both tagged: "right" taken back
+    d = decide(words, [(taken_back, math.log(0.8)), (abandoned, math.log(0.1))], _sure(taken_back), TAGS)
+    assert d.action == "act" and d.command.drywall_id == "500320"
+
+    words, lying = _wt("the 4/width by 6/length panel lying down at 500102/ID_stud along the bottom/Hr_btm")
+    upright = ["O" if t == "Hr_btm" else t for t in lying]
+    d = decide(words, [(lying, math.log(0.8)), (upright, math.log(0.1))], _sure(lying), TAGS)
+    assert d.action == "act" and d.command.placement.value == "horizontal_bottom"
+
+    words, row = _wt("for the next bottom-row/Hr_btm sheet start at 500106/ID_stud , the right/Dw_loc1 stack")
+    plain = ["O" if t == "Hr_btm" else t for t in row]
+    d = decide(words, [(row, math.log(0.8)), (plain, math.log(0.1))], _sure(row), TAGS)
+    assert d.action == "act" and d.command.placement.value == "horizontal_bottom"
+
+    words, row = _wt("the 4x6/width on 500104/ID_stud , skip the top/Hr_top row/Hr_top for now")
+    plain = ["O" if t == "Hr_top" else t for t in row]
+    d = decide(words, [(row, math.log(0.8)), (plain, math.log(0.1))], _sure(row), TAGS)
+    assert d.action == "ask" and {o[3] for o in d.options} == {"horizontal_top", "vertical_left"}

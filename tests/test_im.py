@@ -1041,3 +1041,18 @@ def test_word_readings_for_the_decision_checks():
     # a place in a stack, never the top of the wall
     assert W.stack_place("take it off the top of the left stack".split()) == [4, 5, 6, 7, 8]
     assert W.stack_place("along the top of the wall".split()) == []
+    # "the upright" is a stud in trade talk, not how the panel goes
+    assert W.upright_words("the top one at the upright at the far left".split()) == []
+
+
+@pytest.mark.parametrize("markup, expected", [
+    # "left" after "has one" says what remains in the stack, not the left one
+    ("since the middle/Dw_loc1 pile has one left/Dw_loc1 , use it on 500106/ID_stud", "500321"),
+    ("the right/Dw_loc1 pile , only two left/Dw_loc1 in it , on 500106/ID_stud", "500322"),
+])
+def test_what_is_left_in_a_stack_is_no_side(markup, expected):
+    words, tags = _raw(markup)
+    result = interpret(words, tags)
+    assert result.command is not None and result.command.drywall_id == expected, result.summary()
+    # "is one left of 500108 free?" is a direction
+    assert W.what_is_left("is one left of 500108 free".split()) == []

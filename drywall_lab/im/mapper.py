@@ -82,8 +82,8 @@ def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory 
                              "framed), not the placement: read as O")
     if ti.in_stack:
         trace.add("reading", "R0 place in a stack", True,
-                  conclusion=f"{W.quote([ti.words[i] for i in ti.in_stack])} names a place in a stack, not a row "
-                             "on the wall: read as O")
+                  conclusion=f"{W.quote([ti.words[i] for i in ti.in_stack])} names a place in a stack or what is "
+                             "left in it, not a row on the wall or a side: read as O")
     if ti.taken_back:
         trace.add("reading", "R0 final intention", True, conclusion=_taken_back_text(ti))
     ctx = MappingContext(site, history.state, history.last)

@@ -31,7 +31,8 @@ class TaggedInstruction:
     words of a stud spacing ("16 in on centre", ``words.stud_spacing``; kept in ``spacing``) are
     read as ``O`` too: they say how the wall is framed, never the centre-line placement; and so are
     the placement tags of a place in a stack ("the 2x8 off the top of the middle pile", ``words.stack_place``;
-    kept in ``in_stack``): it says which panel, or why, never the row.
+    kept in ``in_stack``): it says which panel, or why, never the row; and the tag of a "left" that says what
+    remains ("the pile has one left", ``words.what_is_left``), never a side.
     """
 
     words: tuple[str, ...]
@@ -40,7 +41,8 @@ class TaggedInstruction:
     taken_back: dict[int, str] = field(init=False, repr=False, compare=False)
     #: The positions of a stud spacing phrase whose tags were read as ``O`` (empty when none of them was tagged).
     spacing: tuple[int, ...] = field(init=False, repr=False, compare=False)
-    #: The positions of a place in a stack ("off the top of the middle pile") whose placement tags were read as ``O``.
+    #: The positions of a place in a stack ("off the top of the middle pile") whose placement tags were read as ``O``,
+    #: and of a "left" that says what remains in it ("the pile has one left", ``words.what_is_left``).
     in_stack: tuple[int, ...] = field(init=False, repr=False, compare=False)
     #: Where each tag stands (tag -> word positions): the rules ask for it thousands of times per decision.
     _positions: dict[str, list[int]] = field(init=False, repr=False, compare=False)
@@ -59,6 +61,7 @@ class TaggedInstruction:
         if spacing:
             tags = tuple("O" if i in spacing else t for i, t in enumerate(tags))
         in_stack = tuple(i for i in W.stack_place(words) if tags[i] in PLACEMENT_TAGS)
+        in_stack += tuple(i for i in W.what_is_left(words) if tags[i] != "O")
         if in_stack:
             tags = tuple("O" if i in in_stack else t for i, t in enumerate(tags))
         back = taken_back(words, tags)

@@ -283,6 +283,52 @@ def says_centre_line(words: Iterable[str]) -> bool:
     return not CENTRE_LINE_WORDS.isdisjoint(_with_pieces(words))
 
 
+#: The row nouns that follow a row word in a row phrase ("top row", "bottom course", "bottom-row"; guidelines 4.7).
+ROW_NOUNS = frozenset({"row", "course", "half", "part", "level", "plate", "tier", "run"})
+
+
+def row_phrases(words: Sequence[str]) -> list[tuple[int, ...]]:
+    """The row phrases of the words: a row word with a row noun right after it ("top row", "the bottom course") or in
+    one hyphenated word ("bottom-row"), each as its positions. The guidelines tag such a phrase as the placement,
+    always.
+
+    >>> row_phrases("the next bottom-row sheet at 500106".split()), row_phrases("top row over it".split())
+    ([(2,)], [(0, 1)])
+    """
+    norm = [normalise(w) for w in words]
+    rows = TOP_ROW_WORDS | BOTTOM_ROW_WORDS
+    out: list[tuple[int, ...]] = []
+    for i, w in enumerate(norm):
+        pieces = [p for p in w.split("-") if p]
+        if len(pieces) > 1 and pieces[0] in rows and pieces[1] in ROW_NOUNS:
+            out.append((i,))
+        elif w in rows and i + 1 < len(norm) and norm[i + 1] in ROW_NOUNS:
+            out.append((i, i + 1))
+    return out
+
+
+#: Counts before "left" that say what remains ("has one left", "only two left"), not a side.
+_REMAINING_BEFORE = frozenset({"has", "have", "had", "got", "only", "just", "is", "are", "there's", "theres"})
+
+
+def what_is_left(words: Sequence[str]) -> list[int]:
+    """Where "left" says what remains ("the middle pile has one left", "only two left in it"), not the left side: the
+    position of "left" right after a count that follows "has", "only", ... and before no "of", "from", ... ("is one
+    left of 500104 free?" is a direction; guidelines 4.7: ``O``).
+
+    >>> what_is_left("since the middle pile has one left , use it".split()), what_is_left("the one left of it".split())
+    ([6], [])
+    """
+    norm = [normalise(w) for w in words]
+    return [i for i in range(2, len(norm)) if norm[i] == "left" and (numbers_in(words[i - 1]) or norm[i - 1] in
+            ("none", "nothing", "few", "some")) and norm[i - 2] in _REMAINING_BEFORE
+            and (i + 1 == len(norm) or norm[i + 1] not in _DIRECTION_AFTER)]
+
+
+#: Words after "left" that make it a direction ("is one left of 500104 free?"), never what remains.
+_DIRECTION_AFTER = frozenset({"of", "from", "to", "off", "side", "hand", "end"})
+
+
 #: A lying word says how *this* panel goes only near the instruction's own words: at most this many words from a
 #: tagged word ("the 4 by 6 lying down at 500100"), not in a story before it.
 LYING_REACH = 4
@@ -308,10 +354,14 @@ def lying_words(words: Sequence[str], tags: Sequence[str] | None = None) -> list
     return [i for i in lying if any(abs(i - j) <= LYING_REACH for j in tagged)]
 
 
+#: Words before a noun: "the upright", "each upright" name a stud (trade talk), not how the panel stands.
+_DETERMINERS = frozenset({"the", "a", "an", "that", "this", "each", "every", "next", "first", "last", "same", "one"})
+
+
 def upright_words(words: Sequence[str], tags: Sequence[str] | None = None) -> list[int]:
     """Where the words say the panel stands ("standing up", "upright", ``UPRIGHT_WORDS``), as ``lying_words`` reads
     lying words: none when a word takes something back or says it lies; with ``tags``, only those within
-    ``LYING_REACH`` words of a tagged word.
+    ``LYING_REACH`` words of a tagged word. After "the", "each", ... it is a noun: "at the upright" is the stud.
 
     >>> upright_words("the 2x8 goes standing on 500100".split()), upright_words("lying down , not upright".split())
     ([3], [])
@@ -319,7 +369,7 @@ def upright_words(words: Sequence[str], tags: Sequence[str] | None = None) -> li
     said = [normalise(w) for w in words]
     if any(w in TAKE_BACK_WORDS or w in LYING_WORDS for w in said):
         return []
-    upright = [i for i, w in enumerate(said) if w in UPRIGHT_WORDS]
+    upright = [i for i, w in enumerate(said) if w in UPRIGHT_WORDS and not (i and said[i - 1] in _DETERMINERS)]
     if tags is None or not upright:
         return upright
     tagged = [j for j, t in enumerate(tags) if t not in UNTAGGED]

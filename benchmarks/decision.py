@@ -54,9 +54,9 @@ SPLITS = ("field-validation", "field-novel")
 WRONG_ACTION_COST = 10
 GRID = {
     "act": (0.0, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95),
-    "recover": (0.2, 0.4, 0.6, 1.0),
+    "recover": (0.05, 0.1, 0.2, 0.4, 1.0),
     "doubt": (0.05, 0.2, 1.0),
-    "margin": (1.5, 3.0, 5.0),
+    "margin": (3.0, 5.0, 7.0),
     "pending": (True, False),
     "half": ("off", "said"),
     "through": (False, True),

@@ -413,8 +413,8 @@ _NEGATING = frozenset({"skip", "without", "forget", "except", "but", "instead"})
 
 def leaves_out_a_row_phrase(words: Sequence[str], best: Reading, rival: Reading) -> bool:
     """Whether the best reading takes its row from a row phrase ("top row", "the next bottom-row sheet";
-    ``words.row_phrases``), which the guidelines always tag as the placement, and a rival leaves that phrase untagged
-    and says no row: it reads the words less fully than the best one, so it is no rival. Not when a negation or a
+    ``words.row_phrases``), which the guidelines always tag as the placement, and a rival says no such row (the phrase
+    untagged or read as something else): it reads the words less fully than the best one, so it is no rival. Not when a negation or a
     take-back word comes just before the phrase ("skip the top row"): then the rival may be right to leave it."""
     norm = [W.normalise(w) for w in words]
     for phrase in W.row_phrases(words):
@@ -422,7 +422,7 @@ def leaves_out_a_row_phrase(words: Sequence[str], best: Reading, rival: Reading)
             continue  # "skip the top row", "no, not the bottom row": the phrase may be what the worker rules out
         row = best.read_tags[phrase[0]]
         if row in ("Hr_top", "Hr_btm") and all(best.read_tags[i] == row for i in phrase):
-            if all(rival.read_tags[i] == "O" for i in phrase) and row not in rival.read_tags:
+            if row not in rival.read_tags:  # the phrase untagged, or read as something else ("bottom-row" as a size)
                 return True
     return False
 

@@ -160,7 +160,7 @@ BEST_PATH = DecisionSettings(k=1, margin=0.0, act=0.0, recover=1.0, doubt=1.0, q
 #: recipe, by the mean cost over three models trained with seeds 0-2 (``benchmarks/results/decision.md``; a test
 #: checks that they are the recorded choice). Its rule gave ``doubt=1.0``: the doubtful-word check did not lower
 #: the cost there, so it is off by default.
-DEFAULT_SETTINGS = DecisionSettings(k=8, margin=5.0, act=0.0, recover=0.2, doubt=1.0, question=0.2, pending=True,
+DEFAULT_SETTINGS = DecisionSettings(k=8, margin=5.0, act=0.0, recover=0.05, doubt=1.0, question=0.2, pending=True,
                                     half="said", through=True)
 
 
@@ -414,8 +414,8 @@ _NEGATING = frozenset({"skip", "without", "forget", "except", "but", "instead"})
 def leaves_out_a_row_phrase(words: Sequence[str], best: Reading, rival: Reading) -> bool:
     """Whether the best reading takes its row from a row phrase ("top row", "the next bottom-row sheet";
     ``words.row_phrases``), which the guidelines always tag as the placement, and a rival says no such row (the phrase
-    untagged or read as something else): it reads the words less fully than the best one, so it is no rival. Not when a negation or a
-    take-back word comes just before the phrase ("skip the top row"): then the rival may be right to leave it."""
+    untagged or read as something else): it reads the words less fully than the best one, so it is no rival. Not
+    when a negation or a take-back word comes just before the phrase ("skip the top row"): the rival may be right."""
     norm = [W.normalise(w) for w in words]
     for phrase in W.row_phrases(words):
         if any(w in W.TAKE_BACK_WORDS or w in _NEGATING for w in norm[max(0, phrase[0] - 3):phrase[0]]):
@@ -638,7 +638,8 @@ def said_tags(decision: Decision, margin: float = 0.0) -> set[str]:
 def completions(decision: Decision, history: ActionHistory, half: str = "said", margin: float = 0.0) -> list[Outcome]:
     """The commands an instruction refused as ``undetermined`` may have meant, feasible on the site as ``history``
     leaves it: the panel and the stud its reading determines, and any panel on top of a stack or any stud for the
-    part it does not. Empty when ``half`` (``HALF_UNDERSTOOD``) does not count this refusal; with ``"said"``, a part
+    part it does not; and the command of every reading within ``margin`` that gives one (a rival may have read the
+    part the best reading got wrong). Empty when ``half`` (``HALF_UNDERSTOOD``) does not count this refusal; with ``"said"``, a part
     counts as said when a reading within ``margin`` of the best tags a word for it (``said_tags``)."""
     if half == "off" or decision.acted or decision.refusal.reason != "undetermined":
         return []
@@ -661,8 +662,11 @@ def completions(decision: Decision, history: ActionHistory, half: str = "said", 
         placements = [resolve_placement(ti)]
     except Refusal:
         placements = list(Placement)  # two placements said: either
-    meant = (("command", panel, stud, placement.value)
-             for panel, stud, placement in itertools.product(panels, studs, placements))
+    meant = [("command", panel, stud, placement.value)
+             for panel, stud, placement in itertools.product(panels, studs, placements)]
+    best = decision.readings[0].logprob if decision.readings else 0.0
+    meant += [r.outcome for r in decision.readings  # what a rival read it as ("left/Dw_loc1 500103/ID_stud")
+              if r.outcome[0] == "command" and r.logprob >= best - margin and r.outcome not in meant]
     return [command for command in meant if _feasible(history, command)]
 
 

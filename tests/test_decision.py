@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -662,3 +663,18 @@ def test_rivals_that_read_the_words_less_fully_are_no_rivals():
     plain = ["O" if t == "Hr_top" else t for t in row]
     d = decide(words, [(row, math.log(0.8)), (plain, math.log(0.1))], _sure(row), TAGS)
     assert d.action == "ask" and {o[3] for o in d.options} == {"horizontal_top", "vertical_left"}
+
+
+def test_a_half_understood_refusal_may_have_meant_what_a_rival_read():
+    """The commands an ``undetermined`` refusal may have meant include every command a reading within the margin
+    gives: the best reading may have got the part wrong that it did resolve ("panel left , stud 500103" read as
+    "left of 500103"), and a rival read the instruction whole."""
+    history = ActionHistory()
+    words, best = _wt("panel left/St_loc1 stud 500103/St_loc2")
+    rival = ["Dw_loc1" if w == "left" else "ID_stud" if w == "500103" else "O" for w in words]
+    d = decide(words, [(best, math.log(0.9)), (rival, math.log(0.02))], _sure(best), TAGS, history,
+               replace(DEFAULT_SETTINGS, recover=1.0))
+    assert d.refusal.reason == "undetermined"
+    meant = completions(d, history, "said", DEFAULT_SETTINGS.margin)
+    assert ("command", "500320", "500103", "vertical_left") in meant
+    assert ("command", "500320", "500103", "vertical_left") not in completions(d, history, "said", 0.0)

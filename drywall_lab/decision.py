@@ -99,7 +99,7 @@ import numpy as np
 from drywall_lab.corpus.tags import DESTINATION_TAGS, PLACEMENT_TAGS, TARGET_TAGS
 from drywall_lab.errors import Refusal
 from drywall_lab.im import ActionHistory, Interpretation, RobotCommand, Trace
-from drywall_lab.im.correction import PARTS
+from drywall_lab.im.correction import NEGATIONS, PARTS
 from drywall_lab.im import interpret as im_interpret
 from drywall_lab.im import words as W
 from drywall_lab.im.context import MappingContext
@@ -408,7 +408,8 @@ def reads_what_was_taken_back(words: Sequence[str], best: Reading, rival: Readin
     return False
 
 
-_NEGATING = frozenset({"skip", "without", "forget", "except", "but", "instead"})
+#: Words that rule out the phrase after them: the IM's negations ("skip", "without", ...) and "except", "but".
+_NEGATING = frozenset(cue[0] for cue in NEGATIONS) | {"except", "but", "instead"}
 
 
 def leaves_out_a_row_phrase(words: Sequence[str], best: Reading, rival: Reading) -> bool:
@@ -469,6 +470,14 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         return Decision(words, list(reading.tags), result, mass.get(reading.outcome, 0.0), action, readings,
                         list(options))
 
+    contradicted_of: dict[int, bool] = {}
+
+    def contradicted(reading: Reading) -> bool:
+        """``placement_contradicted`` for a reading, worked out once per decision."""
+        if id(reading) not in contradicted_of:
+            contradicted_of[id(reading)] = placement_contradicted(words, reading.read_tags)
+        return contradicted_of[id(reading)]
+
     def torn_towards(rival: Reading, outcome: Outcome) -> bool:
         """Whether a rival's own words name two panels or studs, one of them giving ``outcome`` ("Unit two, a full
         sheet on 500103" read with "two" as a width and "full" as the size word): it would ask between them, so it is no
@@ -490,9 +499,9 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         """Step 4's reading for a best one whose placement goes against its words: the one command within the margin
         of the readings that differ from the best only in the placement tags and agree with the words, when no other
         reading that agrees with them gives another command; None otherwise."""
-        if not settings.word_checks or not placement_contradicted(words, best.read_tags):
+        if not settings.word_checks or not contradicted(best):
             return None
-        agree = [r for r in within[1:] if r.outcome[0] == "command" and not placement_contradicted(words, r.read_tags)]
+        agree = [r for r in within[1:] if r.outcome[0] == "command" and not contradicted(r)]
         placed = [r for r in agree if _differs_in_placement_only(best.read_tags, r.read_tags)]
         if not placed or len({r.outcome for r in agree}) != 1 or mass[placed[0].outcome] < settings.recover:
             return None
@@ -504,10 +513,10 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
             return finish(placed, "recover",
                           f"the best reading's placement goes against the words; the reading that differs only in the "
                           f"placement and says it as the words do gives one command, p={mass[placed.outcome]:.3f}")
-        sound = settings.word_checks and not placement_contradicted(words, best.read_tags)
+        sound = settings.word_checks and not contradicted(best)
         others = list(dict.fromkeys(r.outcome for r in within[1:] if r.outcome[0] == "command"
                                     and r.outcome != best.outcome and not torn_towards(r, best.outcome)
-                                    and not (sound and placement_contradicted(words, r.read_tags))
+                                    and not (sound and contradicted(r))
                                     and not (settings.word_checks and leaves_out_a_row_phrase(words, best, r))))
         if others:
             return finish(best, "ask", "two readings give different commands",

@@ -347,11 +347,15 @@ def lying_words(words: Sequence[str], tags: Sequence[str] | None = None) -> list
     said = [normalise(w) for w in words]
     if any(w in TAKE_BACK_WORDS or w in UPRIGHT_WORDS for w in said):
         return []
-    lying = [i for i, w in enumerate(said) if w in LYING_WORDS]
-    if tags is None or not lying:
-        return lying
+    return _near_tagged([i for i, w in enumerate(said) if w in LYING_WORDS], tags)
+
+
+def _near_tagged(positions: list[int], tags: Sequence[str] | None) -> list[int]:
+    """The positions within ``LYING_REACH`` words of a tagged word (all of them without ``tags``)."""
+    if tags is None or not positions:
+        return positions
     tagged = [j for j, t in enumerate(tags) if t not in UNTAGGED]
-    return [i for i in lying if any(abs(i - j) <= LYING_REACH for j in tagged)]
+    return [i for i in positions if any(abs(i - j) <= LYING_REACH for j in tagged)]
 
 
 #: Words before a noun: "the upright", "each upright" name a stud (trade talk), not how the panel stands.
@@ -363,17 +367,14 @@ def upright_words(words: Sequence[str], tags: Sequence[str] | None = None) -> li
     lying words: none when a word takes something back or says it lies; with ``tags``, only those within
     ``LYING_REACH`` words of a tagged word. After "the", "each", ... it is a noun: "at the upright" is the stud.
 
-    >>> upright_words("the 2x8 goes standing on 500100".split()), upright_words("lying down , not upright".split())
-    ([3], [])
+    >>> upright_words("the 4x6 stands on 500102".split()), upright_words("lying down , not upright".split())
+    ([2], [])
     """
     said = [normalise(w) for w in words]
     if any(w in TAKE_BACK_WORDS or w in LYING_WORDS for w in said):
         return []
-    upright = [i for i, w in enumerate(said) if w in UPRIGHT_WORDS and not (i and said[i - 1] in _DETERMINERS)]
-    if tags is None or not upright:
-        return upright
-    tagged = [j for j, t in enumerate(tags) if t not in UNTAGGED]
-    return [i for i in upright if any(abs(i - j) <= LYING_REACH for j in tagged)]
+    return _near_tagged([i for i, w in enumerate(said)
+                         if w in UPRIGHT_WORDS and not (i and said[i - 1] in _DETERMINERS)], tags)
 
 
 #: The stud spacings of framing (inches on centre): "16 in on centre", "sixteen-inch centres", "24 o.c.".

@@ -307,7 +307,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     from drywall_lab.nlu.cli import add_commands as add_tagger_commands
 
-    add_tagger_commands(sub)  # train, evaluate (drywall_lab/nlu/cli.py)
+    add_tagger_commands(sub)  # train, ensemble, evaluate (drywall_lab/nlu/cli.py)
 
     p = sub.add_parser("experiment", help="paper: the paper's NLU study (LSTM/BERT-M1..M4, BERT-C1..C4, Tables 3-5, "
                                           "Fig. 13); field: the ablation from the corpus to the field")

@@ -54,6 +54,7 @@ _EXPORTS = {
     "crf_sequence_scores": "drywall_lab.nlu.bilstm_crf",
     "fallback_token": "drywall_lab.nlu.bilstm_crf",
     "word_key": "drywall_lab.nlu.bilstm_crf",
+    "CrfEnsembleTagger": "drywall_lab.nlu.ensemble",
     "DEFAULT_TAGGER_DIR": "drywall_lab.nlu.default",
     "default_tagger": "drywall_lab.nlu.default",
     "TaggingScores": "drywall_lab.nlu.metrics",
@@ -81,6 +82,6 @@ __all__ = [
     "BertTagger", "EncoderNotFoundError", "default_encoder_path", "split_into_pieces", "subword_marginals",
     "beam_kbest", "vote_word_tags", "BiLstmCrfTagger", "CHAR_FEATURES", "character_vocabulary", "word_characters",
     "crf_confidence", "crf_kbest", "crf_log_partition", "crf_marginals", "crf_sequence_scores", "fallback_token", "word_key",
-    "DEFAULT_TAGGER_DIR", "default_tagger", "TaggingScores", "acc_inst", "acc_word", "confusion_pairs",
+    "CrfEnsembleTagger", "DEFAULT_TAGGER_DIR", "default_tagger", "TaggingScores", "acc_inst", "acc_word", "confusion_pairs",
     "count_instruction_errors", "count_word_errors", "error_examples", "instruction_errors", "score_tagging", "tag_error_table",
 ]

@@ -57,6 +57,7 @@ TAG_FIELDS = ("tags", "coref_tags")
 KINDS: dict[str, tuple[str, str]] = {
     "bilstm-crf": ("drywall_lab.nlu.bilstm_crf", "BiLstmCrfTagger"),
     "bert": ("drywall_lab.nlu.bert", "BertTagger"),
+    "bilstm-crf-ensemble": ("drywall_lab.nlu.ensemble", "CrfEnsembleTagger"),
 }
 
 Sentences = Sequence[Sequence[str]]

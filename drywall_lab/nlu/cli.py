@@ -1,4 +1,4 @@
-"""Command-line commands for the taggers: ``train`` and ``evaluate``.
+"""Command-line commands for the taggers: ``train``, ``ensemble`` and ``evaluate``.
 
 ``add_commands(subparsers)`` adds both to an ``argparse`` sub-command parser; they are
 wired into ``python -m drywall_lab`` (``drywall_lab/__main__.py``), and also run on their
@@ -8,6 +8,7 @@ own as ``python -m drywall_lab.nlu.cli train ...`` / ``... evaluate ...``::
     python -m drywall_lab train bilstm-crf --out runs/lstm-char --char-features --word-dropout 0.1
     python -m drywall_lab train bert --out runs/bert-m4 --train-size 316 # a BERT-M4-sized training set
     python -m drywall_lab train bert --out runs/bert-c1 --coref          # the co-reference variant (Table 5)
+    python -m drywall_lab ensemble --member runs/s0 --member runs/s1 --out runs/ensemble  # BiLSTM-CRFs as one
     python -m drywall_lab evaluate --split test                          # the shipped default tagger
     python -m drywall_lab evaluate --tagger runs/lstm-m1 --split validation --device cpu
     python -m drywall_lab evaluate --tagger gold --split novel           # the gold tags themselves (accuracy 1)
@@ -139,6 +140,20 @@ def cmd_train(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_ensemble(args: argparse.Namespace) -> int:
+    """``ensemble --member DIR ... --out DIR``: trained BiLSTM-CRF taggers saved as one (``CrfEnsembleTagger``)."""
+    from drywall_lab.nlu.ensemble import CrfEnsembleTagger
+
+    if args.out.resolve() in {Path(m).resolve() for m in args.member}:
+        raise ValueError(f"--out {args.out} is one of the members: give the ensemble a directory of its own")
+    members = [load_tagger(directory) for directory in args.member]
+    ensemble = CrfEnsembleTagger.combine(members)
+    directory = ensemble.save(args.out)
+    print(f"saved the ensemble of {len(members)} BiLSTM-CRF taggers ({ensemble.n_parameters():,} parameters) "
+          f"to {directory}")
+    return 0
+
+
 def evaluate_split(
     tagger: Tagger | str | Path | None, split: str, device: str | None = None, *, return_tagger: bool = False
 ) -> tuple:
@@ -244,6 +259,12 @@ def add_commands(subparsers: argparse._SubParsersAction) -> None:
                    help="where to train: auto (a GPU when there is one, default), cpu or cuda")
     p.add_argument("--seed", type=int, default=DEFAULT_SEED)
     p.set_defaults(func=cmd_train)
+
+    p = subparsers.add_parser("ensemble", help="combine trained BiLSTM-CRF taggers into one (their CRF scores averaged)")
+    p.add_argument("--member", required=True, action="append", metavar="DIR",
+                   help="a trained BiLSTM-CRF tagger's directory (give it once per member)")
+    p.add_argument("--out", required=True, type=Path, metavar="DIR", help="directory to save the ensemble in")
+    p.set_defaults(func=cmd_ensemble)
 
     p = subparsers.add_parser("evaluate", help="a tagger's per-tag errors and Acc_word / Acc_inst on a split")
     p.add_argument("--tagger", default=None, metavar="DIR|gold",

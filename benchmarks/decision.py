@@ -22,16 +22,20 @@ of the chosen setting (the ``act`` threshold moved, everything else fixed) and t
 to its results file (default ``benchmarks/results/decision.md``), with the machine, the date and the
 command. ``drywall_lab.decision.DEFAULT_SETTINGS`` must equal the recorded choice (a test checks it).
 
-    python benchmarks/decision.py [--tagger DIR ...] [--out FILE] [--quick]
+    python benchmarks/decision.py [--tagger DIR ...] [--jobs N] [--out FILE] [--quick]
 
-The recorded choice: ``python benchmarks/field_seeds.py`` (the shipped recipe with seeds 0-2 in
-``build/field_seeds``), then ``python benchmarks/decision.py --tagger build/field_seeds/seed0 --tagger
-build/field_seeds/seed1 --tagger build/field_seeds/seed2``.
+The recorded choice is made for the shipped recipe, an ensemble of two seed models (``make default-tagger``), over the
+three ensembles of two of the seed models 0-2: ``python benchmarks/field_seeds.py`` (the seed models in
+``build/field_seeds``), then, for each pair ``A B`` of 0 1, 0 2 and 1 2, ``python -m drywall_lab ensemble --member
+build/field_seeds/seedA --member build/field_seeds/seedB --out build/ensembles/seedA+seedB``, then
+``python benchmarks/decision.py --jobs 2 --tagger build/ensembles/seed0+seed1 --tagger build/ensembles/seed0+seed2
+--tagger build/ensembles/seed1+seed2`` (35 min on 2 CPU cores).
 """
 from __future__ import annotations
 
 import argparse
 import itertools
+import multiprocessing
 import sys
 import time
 from dataclasses import asdict, replace
@@ -56,7 +60,7 @@ GRID = {
     "act": (0.0, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95),
     "recover": (0.05, 0.1, 0.2, 0.4, 1.0),
     "doubt": (0.05, 0.2, 1.0),
-    "margin": (3.0, 5.0, 7.0),
+    "margin": (1.0, 1.5, 2.0, 3.0, 5.0),
     "pending": (True, False),
     "half": ("off", "said"),
     "through": (False, True),
@@ -139,28 +143,60 @@ def _settings_of(row: pd.Series) -> DecisionSettings:
     return replace(DEFAULT_SETTINGS, **{name: type(getattr(DEFAULT_SETTINGS, name))(row[name]) for name in SETTINGS})
 
 
-def choose(readings: dict[str, dict[str, Readings]], grid: dict[str, tuple]) -> tuple[DecisionSettings, pd.DataFrame]:
+def _score_setting(readings: dict[str, dict[str, Readings]], record: dict) -> dict:
+    """One row of ``choose``'s table: ``record``'s setting scored on every split with every tagger."""
+    record = dict(record)
+    settings = replace(DEFAULT_SETTINGS, **record)
+    per_split: dict[str, list[dict]] = {}
+    costs = []
+    for name, splits in readings.items():
+        own = []
+        for split, r in splits.items():
+            scores = decision_scores(r.rows, r.decide(settings))
+            per_split.setdefault(split, []).append(scores)
+            own.append(cost(scores))
+        record[f"cost:{name}"] = sum(own) / len(own)
+        costs.extend(own)
+    for split, scores in per_split.items():
+        for k in scores[0]:
+            record[f"{split}:{k}"] = sum(s[k] for s in scores) / len(scores)
+    record["cost"] = sum(costs) / len(costs)
+    return record
+
+
+def _forked_map(function, items: list, jobs: int) -> list:
+    """``[function(x) for x in items]`` in ``jobs`` forked processes, each on a contiguous share of ``items`` (a fork
+    shares the parent's readings and caches without copying them through a pipe; only the results come back)."""
+    context = multiprocessing.get_context("fork")
+    bounds = [len(items) * j // jobs for j in range(jobs + 1)]
+    workers = []
+    for start, stop in zip(bounds, bounds[1:]):
+        receive, send = context.Pipe(duplex=False)
+        process = context.Process(target=lambda part=items[start:stop], pipe=send: pipe.send([function(x) for x in part]))
+        process.start()
+        send.close()
+        workers.append((process, receive))
+    out = []
+    for process, receive in workers:
+        try:
+            out += receive.recv()
+        except EOFError:
+            raise RuntimeError(f"a worker process failed (exit code {process.join() or process.exitcode})") from None
+        process.join()
+    return out
+
+
+def choose(readings: dict[str, dict[str, Readings]], grid: dict[str, tuple],
+           jobs: int = 1) -> tuple[DecisionSettings, pd.DataFrame]:
     """Every setting of the grid scored on every split with every tagger (``readings[tagger][split]``); the setting
     of least mean cost over them all wins (ties: the more careful). The table has one row a setting: the mean
-    rates over the taggers for each split, each tagger's own cost (``cost:<tagger>``) and the mean ``cost``."""
-    rows = []
-    for record in grid_settings(grid):
-        settings = replace(DEFAULT_SETTINGS, **record)
-        per_split: dict[str, list[dict]] = {}
-        costs = []
-        for name, splits in readings.items():
-            own = []
-            for split, r in splits.items():
-                scores = decision_scores(r.rows, r.decide(settings))
-                per_split.setdefault(split, []).append(scores)
-                own.append(cost(scores))
-            record[f"cost:{name}"] = sum(own) / len(own)
-            costs.extend(own)
-        for split, scores in per_split.items():
-            for k in scores[0]:
-                record[f"{split}:{k}"] = sum(s[k] for s in scores) / len(scores)
-        record["cost"] = sum(costs) / len(costs)
-        rows.append(record)
+    rates over the taggers for each split, each tagger's own cost (``cost:<tagger>``) and the mean ``cost``.
+    ``jobs`` > 1 scores the settings in that many forked processes (the same table, in the grid's order)."""
+    records = grid_settings(grid)
+    if jobs > 1:
+        rows = _forked_map(lambda record: _score_setting(readings, record), records, jobs)
+    else:
+        rows = [_score_setting(readings, record) for record in records]
     table = pd.DataFrame(rows)
     return _settings_of(_least_cost(table, "cost")), table
 
@@ -181,6 +217,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--tagger", action="append", default=None,
                         help="a saved tagger's directory; give it once per model to choose for a recipe across "
                              "seeds (default: the shipped tagger alone)")
+    parser.add_argument("--jobs", type=int, default=1, help="settings scored in this many processes at once (default 1)")
     add_results_options(parser, RESULTS, "200 instructions a split and a small grid")
     args = parser.parse_args(argv)
     out = results_path(parser, args, RESULTS)
@@ -196,7 +233,7 @@ def main(argv: list[str] | None = None) -> int:
         tagger = load_tagger_option(option)
         readings[name] = {s: Readings(split_rows(s)[:200] if args.quick else split_rows(s), tagger, DEFAULT_SETTINGS.k)
                           for s in SPLITS}
-    chosen, table = choose(readings, grid)
+    chosen, table = choose(readings, grid, args.jobs)
     first = readings[names[0]]
     lines = ["# Decision layer: thresholds and risk against coverage (`benchmarks/decision.py`)", "",
              f"**Command:** `{command_line('decision.py', (argv if argv is not None else sys.argv[1:]))}`",

@@ -7,7 +7,8 @@ thresholds were chosen (``benchmarks/decision.py``): the decision cost (``WRONG_
 + over-refusal rate, the mean over the generated field corpus's validation and novel splits, the episodes played
 as ``run`` plays them, at ``DEFAULT_SETTINGS``) and the paper corpus's test split's Acc_inst (the issue's 99.4%
 target). The shipped tagger is the candidate of least cost among those that keep the target
-(``drywall_lab.nlu.field_study.DEFAULT_ENSEMBLE``; tested against this file). The hand-written field sets are
+(``drywall_lab.nlu.field_study.DEFAULT_ENSEMBLE_SEEDS``, which ``make default-tagger`` trains and combines;
+tested against this file). The hand-written field sets are
 then played by every candidate, for the record only: they choose nothing.
 
     python benchmarks/ensemble.py [--member DIR ...] [--out FILE] [--quick]
@@ -41,6 +42,12 @@ RESULTS = ROOT / "benchmarks" / "results" / "ensemble.md"
 MEMBERS = [ROOT / "build" / "field_seeds" / f"seed{seed}" for seed in (0, 1, 2)]
 ACC_INST_TARGET = 0.994
 QUICK = 150
+
+
+def shown(path: Path) -> str:
+    """A path as the results file shows it: relative to the repository where it lies inside it."""
+    path = path.resolve()
+    return str(path.relative_to(ROOT)) if path.is_relative_to(ROOT) else str(path)
 
 
 def generated_figures(tagger, limit: int | None) -> dict[str, float]:
@@ -101,7 +108,7 @@ def main(argv: list[str] | None = None) -> int:
     summary = [f"{name}_cost={table.loc[name, 'cost']:.4f}" for name in table.index] + [f"chosen={chosen}"]
     lines = ["# One seed model or their ensemble (`benchmarks/ensemble.py`)", "",
              f"**Command:** `{command_line('ensemble.py', (argv if argv is not None else sys.argv[1:]))}`", "",
-             f"**Members:** {', '.join(str(m) for m in members)}", "", *machine.markdown_lines(),
+             f"**Members:** {', '.join(shown(m) for m in members)}", "", *machine.markdown_lines(),
              f"- wall time: {(time.perf_counter() - started) / 60:.1f} min", "",
              f"The choice: least `cost` (10 x wrong-action rate + over-refusal rate, mean over {' and '.join(SPLITS)}, "
              f"at the decision layer's default settings) among the candidates whose `test acc_inst` is "

@@ -28,6 +28,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from drywall_lab import course
 from drywall_lab.field import FIELD_DIR, read_field_set, score_run
 from drywall_lab.machine import describe_machine
 from drywall_lab.pipeline import load_tagger_option, run_episodes
@@ -73,10 +74,9 @@ def shared_score(records: list[dict]) -> str:
 
 
 def describe_tagger(option: str | None, tagger) -> str:
-    info = getattr(tagger, "training_info", {}) or {}
+    """Which tagger played the sets, and what it is (``course.describe_tagger``: from its own record)."""
     where = option or "the shipped default tagger (drywall_lab/models/default_tagger)"
-    extra = f", trained on {info['n_train_instructions']} instructions" if "n_train_instructions" in info else ""
-    return f"{where}: {tagger.kind}{extra}"
+    return f"{where}: {course.describe_tagger(tagger)}"
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -1,7 +1,7 @@
 """How much of a field figure is the training run? The shipped recipe trained with several seeds, each played on the
 hand-written field sets.
 
-The shipped tagger is one training run (``make default-tagger``, ``DEFAULT_FIELD_TAGGER["seed"]``). On 170 or 226 hand-written steps one
+The shipped tagger's members are training runs of one recipe (``make default-tagger``, ``DEFAULT_ENSEMBLE_SEEDS``). On 170 or 226 hand-written steps one
 instruction is half a point, and two runs of the same recipe on the same corpus can disagree on dozens of them.
 This script trains the shipped recipe (``drywall_lab.nlu.field_study.DEFAULT_FIELD_TAGGER``: BiLSTM-CRF with
 character features on the field corpus, one torch thread, CPU) with each seed of ``--seeds``, plays ``data/field``
@@ -13,7 +13,7 @@ same seeds' figures on generated splits (``GENERATED``), where the field sets pl
 A seed's model is trained into ``--models``/seed<N> (default ``build/field_seeds``) unless a trained tagger is
 already there; training is bit for bit on the CPU with one thread, so a model found there is the one the command
 would train, as long as the field corpus and the recipe are the same: each model's ``recipe.fingerprint`` records
-the generator and the recipe (``DEFAULT_FIELD_TAGGER`` but its seed) it was trained from, and a model from another
+the generator and the recipe (``DEFAULT_FIELD_TAGGER``) it was trained from, and a model from another
 generator or recipe (or without the record) stops the script, which asks for it to be deleted and trained again. Up to ``--jobs`` seeds train at once (about 9 min each on the 2-core CPU with two at once).
 
     python benchmarks/field_seeds.py [--seeds 0 1 2] [--models DIR] [--jobs 2] [--out FILE] [--quick]
@@ -130,6 +130,12 @@ def weights_digest(directory: Path) -> str:
     return hashlib.sha256((directory / "weights.safetensors").read_bytes()).hexdigest()
 
 
+def shipped_digests() -> set[str]:
+    """The weights of the shipped tagger's models: each member's, for an ensemble (``CrfEnsembleTagger``)."""
+    members = json.loads((DEFAULT_TAGGER_DIR / "tagger.json").read_text(encoding="utf-8")).get("members") or ["."]
+    return {weights_digest(DEFAULT_TAGGER_DIR / member) for member in members}
+
+
 def generated_scores(tagger, limit: int | None = None) -> dict[str, float]:
     """Per generated split (``GENERATED``): the ablation's figures of a split (``field_study.split_scores``)."""
     return {key: value for split in GENERATED for key, value in split_scores(tagger, split, limit).items()}
@@ -152,13 +158,13 @@ def main(argv: list[str] | None = None) -> int:
     machine = describe_machine()
     started = time.perf_counter()
     how = train_missing(sorted(set(args.seeds)), args.models, args.jobs, args.quick, recipe)
-    shipped = weights_digest(DEFAULT_TAGGER_DIR)
+    shipped = shipped_digests()
     rows = []
     for seed in sorted(how):
         directory = args.models / f"seed{seed}"
         tagger = load_tagger(directory)
         row = {"seed": seed, "n_train": tagger.training_info.get("n_train_instructions"),
-               "epochs": tagger.training_info.get("epochs"), "shipped": weights_digest(directory) == shipped}
+               "epochs": tagger.training_info.get("epochs"), "shipped": weights_digest(directory) in shipped}
         for name, field_dir in field_sets().items():
             scores = run_set(field_dir, tagger)[1].loc["ALL"]
             row.update({f"{name} {figure}": float(scores[figure]) for figure in FIGURES})
@@ -178,7 +184,7 @@ def main(argv: list[str] | None = None) -> int:
              f"**Command:** `{command}`", "", *machine.markdown_lines(),
              f"- wall time: {(time.perf_counter() - started) / 60:.1f} min", "",
              "The models: " + "; ".join(f"seed {seed}: {text}" for seed, text in sorted(how.items())) + ". `shipped`: "
-             "the model's weights are the shipped tagger's, byte for byte. Each figure is a share of the steps, played "
+             "the model's weights are those of the shipped tagger or of one of its members, byte for byte. Each figure is a share of the steps, played "
              "episode by episode as `run` plays them, with the decision layer's default settings.", "",
              "```", table[["n_train", "epochs", "shipped"]].T.to_string(), "",
              pd.concat([table[figures].T.add_prefix("seed "), spread.T], axis=1).to_string(float_format=lambda x: f"{x:.4f}"),

@@ -4,12 +4,12 @@ The paper (BERT-M1, bert-base-uncased, a free Google Colab GPU): about 0.025 s p
 average; by number of sentences 0.0224 / 0.0176 / 0.0324 / 0.0606 s for 1 / 2 / 3 / 4 sentences.
 This script times, on the test split (158 instructions) and on the CPU:
 
-(a) ``lstm``: the shipped default BiLSTM-CRF (``default_tagger()``);
+(a) ``lstm``: the shipped default tagger (``default_tagger()``; an ensemble of two BiLSTM-CRFs);
 (b) ``minilm``: a ``BertTagger`` with the default offline MiniLM encoder (6 layers, 384 units).
     Loaded from ``--bert DIR`` when given; otherwise fine-tuned here briefly (1 epoch on 100
     instructions): prediction time does not depend on the values of the weights, only on the
     architecture and the input, so a briefly trained model is timed as fast as a fully trained one;
-(b') ``lstm_decided``: the shipped BiLSTM-CRF as ``run`` uses it, with the decision layer: its readings
+(b') ``lstm_decided``: the shipped tagger as ``run`` uses it, with the decision layer: its readings
     (``predict_confidence``: k best sequences and marginals) and ``drywall_lab.decision.decide`` against
     an empty wall, timed in the same run as ``lstm`` (issue 12: at most twice as slow);
 (c) ``bert_base``: an encoder of the paper's size (``transformers.BertConfig()`` defaults: 12 layers,
@@ -219,7 +219,8 @@ def main(argv: list[str] | None = None) -> int:
     minilm, minilm_source, minilm_train_s = minilm_tagger(args.bert, read_split("train")[: args.train_size])
     bert_base = random_bert_base_tagger(list(minilm.labels), QUICK["bert_base_size"] if args.quick else None)
     models = {
-        "lstm": (lstm, "shipped default BiLSTM-CRF", args.passes),
+        "lstm": (lstm, "shipped default tagger (an ensemble of BiLSTM-CRFs)" if getattr(lstm, "members", None)
+                 else "shipped default BiLSTM-CRF", args.passes),
         "lstm_decided": (DecidedTagger(lstm), "the same with the decision layer (k best, marginals, decide)", args.passes),
         "minilm": (minilm, f"BertTagger, MiniLM encoder ({minilm_source})", args.passes),
         "bert_base": (bert_base, "BertTagger, " + ("a tiny stand-in for the bert-base-sized encoder (--quick)"
@@ -257,9 +258,11 @@ def main(argv: list[str] | None = None) -> int:
 
 def training_lines(lstm, minilm_train_s: float | None, args: argparse.Namespace) -> list[str]:
     """Training wall times as recorded by the taggers (plus the extrapolation, marked as one)."""
-    info = lstm.training_info
-    lines = [f"lstm (LSTM-M1, shipped): {info['wall_seconds']:.1f} s for {info['epochs']} epochs on "
-             f"{info['n_train_instructions']} instructions (training_info['wall_seconds'] of the default tagger)"]
+    members = getattr(lstm, "members", None) or [lstm]  # the shipped ensemble: each member's own training
+    whose = "the default tagger's member" if len(members) > 1 else "the default tagger"
+    lines = [f"lstm (shipped{f', member {i}' if len(members) > 1 else ''}): {m.training_info['wall_seconds']:.1f} s for "
+             f"{m.training_info['epochs']} epochs on {m.training_info['n_train_instructions']} instructions "
+             f"(training_info['wall_seconds'] of {whose})" for i, m in enumerate(members)]
     if minilm_train_s is not None and not args.bert:
         per = minilm_train_s / args.train_size
         lines.append(f"minilm: {minilm_train_s:.1f} s for 1 epoch on {args.train_size} instructions = {per:.3f} s per "

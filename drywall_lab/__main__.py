@@ -324,7 +324,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("interpret", help="one instruction: tags, the information-mapping rule trace, the command")
     p.add_argument("text", help='the instruction, e.g. "Pick up the full-size drywall and put it on stud 500100"')
-    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
+    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped tagger, an ensemble of two BiLSTM-CRFs)")
     p.add_argument("--tagged", action="store_true",
                    help='TEXT is already tagged, word/TAG for tagged words: "the full-size/dim drywall on stud 500100/ID_stud"')
     p.add_argument("--history", default=None,
@@ -335,19 +335,19 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("run", help="episodes (JSON lines) through NLU and IM; one JSON line per instruction (spec section 6)")
     p.add_argument("episodes", help='a JSON-lines file, one {"id": ..., "instructions": [...]} per line')
-    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
+    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped tagger, an ensemble of two BiLSTM-CRFs)")
     p.set_defaults(func=_cmd_run)
 
     p = sub.add_parser("simulate", help="episodes through NLU, IM and the simulated robot: the run fields plus "
                                         "each placement's outcome; --html writes an animation")
     p.add_argument("episodes", help='a JSON-lines file, one {"id": ..., "instructions": [...]} per line')
-    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
+    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped tagger, an ensemble of two BiLSTM-CRFs)")
     p.add_argument("--html", default=None,
                    help="write one self-contained HTML animation of all the episodes here (plays offline)")
     p.set_defaults(func=_cmd_simulate)
 
     p = sub.add_parser("chat", help="talk to the robot: an instruction, its command or question, your answer")
-    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped BiLSTM-CRF)")
+    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped tagger, an ensemble of two BiLSTM-CRFs)")
     p.set_defaults(func=_cmd_chat)
 
     p = sub.add_parser("demo", help="headless walk-through of the course material")

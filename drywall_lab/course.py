@@ -110,18 +110,42 @@ def table_3(taggers: Mapping[str, "Tagger"], rows: Sequence[Mapping]) -> pd.Data
 
 def describe_tagger(tagger: "Tagger") -> str:
     """One sentence saying what a trained tagger is and what it was trained on, from its own record
-    (``training_info``, saved with it): the notebooks never assume which tagger is shipped."""
+    (``training_info``, saved with it): the notebooks never assume which tagger is shipped. An ensemble
+    (``CrfEnsembleTagger``) is described by its members."""
+    members = getattr(tagger, "members", None)
+    if not members:
+        return _describe_one(tagger, tagger.n_parameters()) + "."
+    seeds = ", ".join(str(m.training_info.get("seed", "?")) for m in members)
+    one = _describe_one(members[0], None, wall_time=False).removeprefix("a ")
+    return (f"an ensemble of {len(members)} taggers whose CRF scores are averaged ({tagger.n_parameters():,} parameters "
+            f"in all; seeds {seeds}), each {one}.")
+
+
+def _describe_one(tagger: "Tagger", n_parameters: int | None, wall_time: bool = True) -> str:
     info = tagger.training_info
     kind = {"bilstm-crf": "a BiLSTM-CRF", "bert": "a fine-tuned BERT-family encoder"}.get(tagger.kind, tagger.kind)
     features = " reading characters as well as words" if getattr(tagger, "uses_characters", False) else ""
-    text = f"{kind}{features} with {tagger.n_parameters():,} parameters"
+    text = f"{kind}{features}" + (f" with {n_parameters:,} parameters" if n_parameters is not None else "")
     if "n_train_instructions" in info and "epochs" in info:
         text += f", trained on {info['n_train_instructions']:,} instructions for {info['epochs']} epochs"
         if "n_validation_instructions" in info:
             text += f" (validated on {info['n_validation_instructions']:,})"
-        if info.get("wall_seconds") is not None:
+        if wall_time and info.get("wall_seconds") is not None:
             text += f" in {info['wall_seconds']:.0f} s"
-    return text + "."
+    return text
+
+
+def training_curves(tagger: "Tagger", name: str) -> dict[str, pd.DataFrame]:
+    """A trained tagger's per-epoch history for ``plot_training_curves``, named ``name`` and the number of
+    instructions it was trained on; an ensemble gives one curve per member (its seed in the name)."""
+    members = getattr(tagger, "members", None) or [tagger]
+    curves = {}
+    for member in members:
+        info = member.training_info
+        label = f"{name} ({info.get('n_train_instructions', '?')} instructions"
+        label += f", seed {info['seed']})" if len(members) > 1 and "seed" in info else ")"
+        curves[label] = member.history
+    return curves
 
 
 def scores_on_sets(tagger: "Tagger", sets: Sequence[str], limit: int | None = None) -> pd.DataFrame:
@@ -542,12 +566,18 @@ def crf_transitions(tagger: "Tagger") -> pd.DataFrame:
     """A trained BiLSTM-CRF's transition scores as a table: row = the tag before, column = the tag after.
 
     The CRF adds ``transitions[a, b]`` to a tag sequence's score wherever tag ``b`` follows tag ``a``; the most
-    negative entries are the transitions it has learned to (almost) forbid.
+    negative entries are the transitions it has learned to (almost) forbid. For an ensemble of BiLSTM-CRFs
+    (``CrfEnsembleTagger``), the members' mean, which is what it decodes with.
     """
-    network = getattr(tagger, "network", None)
-    if network is None or not hasattr(network, "crf"):
-        raise ValueError("crf_transitions needs a trained BiLstmCrfTagger")
-    scores = network.crf.transitions.detach().cpu().numpy().astype(float)
+    from drywall_lab.nlu.ensemble import CrfEnsembleTagger
+
+    if isinstance(tagger, CrfEnsembleTagger):
+        crf = tagger.crf
+    else:
+        crf = getattr(getattr(tagger, "network", None), "crf", None)
+    if crf is None:
+        raise ValueError("crf_transitions needs a trained BiLstmCrfTagger (or an ensemble of them)")
+    scores = crf.transitions.detach().cpu().numpy().astype(float)
     labels = list(tagger.labels)
     return pd.DataFrame(scores, index=pd.Index(labels, name="from (tag before)"),
                         columns=pd.Index(labels, name="to (tag after)"))

@@ -285,20 +285,45 @@ def shipped():
 
 
 def test_crf_transitions_is_the_crf_table(shipped):
-    table = course.crf_transitions(shipped)
-    assert table.shape == (13, 13) and list(table.index) == list(shipped.labels) == list(table.columns)
-    crf = shipped.network.crf.transitions.detach().numpy()
+    member = shipped.members[0]
+    table = course.crf_transitions(member)
+    assert table.shape == (13, 13) and list(table.index) == list(member.labels) == list(table.columns)
+    crf = member.network.crf.transitions.detach().numpy()
     assert table.loc["Hr_btm", "Hr_top"] == pytest.approx(crf[TAGS.index("Hr_btm"), TAGS.index("Hr_top")])
     with pytest.raises(ValueError, match="BiLstmCrfTagger"):
         course.crf_transitions(object())
 
 
 def test_describe_tagger_reads_the_taggers_record(shipped):
-    text = course.describe_tagger(shipped)
-    info = shipped.training_info
-    assert text.startswith("a BiLSTM-CRF") and f"{shipped.n_parameters():,} parameters" in text
+    member = shipped.members[0]
+    text = course.describe_tagger(member)
+    info = member.training_info
+    assert text.startswith("a BiLSTM-CRF") and f"{member.n_parameters():,} parameters" in text
     assert f"trained on {info['n_train_instructions']:,} instructions for {info['epochs']} epochs" in text
-    assert ("reading characters" in text) == shipped.uses_characters
+    assert ("reading characters" in text) == member.uses_characters
+    # the shipped ensemble: described by its members, with their seeds
+    text = course.describe_tagger(shipped)
+    seeds = ", ".join(str(m.training_info["seed"]) for m in shipped.members)
+    assert text.startswith(f"an ensemble of {len(shipped.members)} taggers") and f"seeds {seeds})" in text
+    assert f"({shipped.n_parameters():,} parameters in all;" in text and "each BiLSTM-CRF reading characters" in text
+    info = shipped.members[0].training_info
+    assert text.endswith(f"trained on {info['n_train_instructions']:,} instructions for {info['epochs']} epochs "
+                         f"(validated on {info['n_validation_instructions']:,}).")
+
+
+def test_training_curves_one_per_member(shipped):
+    curves = course.training_curves(shipped, "shipped")
+    assert len(curves) == len(shipped.members)
+    for (name, history), member in zip(curves.items(), shipped.members):
+        assert f"seed {member.training_info['seed']}" in name and history is member.history
+    single = course.training_curves(shipped.members[0], "one")
+    assert list(single) == [f"one ({shipped.members[0].training_info['n_train_instructions']} instructions)"]
+
+
+def test_crf_transitions_of_an_ensemble_are_its_members_mean(shipped):
+    table = course.crf_transitions(shipped)
+    mean = np.mean([course.crf_transitions(m).to_numpy() for m in shipped.members], axis=0)
+    np.testing.assert_allclose(table.to_numpy(), mean, atol=1e-6)
 
 
 def test_check_most_forbidden_passes_the_reference(shipped):

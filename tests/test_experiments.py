@@ -117,8 +117,9 @@ def test_rule_ignores_the_order_of_the_grid_and_breaks_ties_to_the_smaller_rate(
     order.shuffle(shuffled)
     assert choose(shuffled)[0] == chosen
     best = table["mean_over_sizes"].max()
-    assert table.loc[chosen, "mean_over_sizes"] == best
-    assert all(table.loc[lr, "mean_over_sizes"] < best - 1e-12 for lr in table.index if lr < chosen)
+    tie = load_script("bert_settings").TIE  # means equal but for rounding (summed in another order) are a tie
+    assert best - table.loc[chosen, "mean_over_sizes"] <= tie
+    assert all(table.loc[lr, "mean_over_sizes"] < best - tie for lr in table.index if lr < chosen)
     # a smaller rate with the chosen one's curves ties with it, and wins the tie
     twin = [dict(p, learning_rate=5e-5) for p in grid if p["learning_rate"] == chosen]
     assert choose(grid + twin)[0] == 5e-5

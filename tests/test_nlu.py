@@ -245,17 +245,23 @@ def test_the_default_tagger_on_unseen_ids(text, expected) -> None:
 
 
 def test_the_default_tagger_is_shipped_small_and_accurate() -> None:
-    tagger = load_tagger(DEFAULT_TAGGER_DIR)
-    assert isinstance(tagger, BiLstmCrfTagger) and tagger.labels == list(TAGS)
-    assert tagger.n_parameters() == json.loads((DEFAULT_TAGGER_DIR / "tagger.json").read_text())["n_parameters"]
-    # the field tagger (make default-tagger, drywall_lab/nlu/field_study.py DEFAULT_FIELD_TAGGER): characters on
-    from drywall_lab.nlu.field_study import DEFAULT_FIELD_TAGGER
+    from drywall_lab.nlu import CrfEnsembleTagger
+    from drywall_lab.nlu.field_study import DEFAULT_ENSEMBLE_SEEDS, DEFAULT_FIELD_TAGGER
 
-    assert tagger.uses_characters and tagger.network.char_cnn is not None and tagger.device == "cpu"
-    assert sum(f.stat().st_size for f in DEFAULT_TAGGER_DIR.iterdir()) < 4_000_000
-    assert len(tagger.history) == DEFAULT_FIELD_TAGGER["epochs"] and tagger.batch_size == DEFAULT_FIELD_TAGGER["batch_size"]
-    assert tagger.swa_epochs == DEFAULT_FIELD_TAGGER["swa_epochs"]
-    assert tagger.training_info["n_train_instructions"] == 2 * len(read_split("train")) + 20000  # splits.CORPORA
+    tagger = load_tagger(DEFAULT_TAGGER_DIR)
+    assert isinstance(tagger, CrfEnsembleTagger) and tagger.labels == list(TAGS)
+    assert tagger.n_parameters() == json.loads((DEFAULT_TAGGER_DIR / "tagger.json").read_text())["n_parameters"]
+    # its members: the field recipe (make default-tagger, drywall_lab/nlu/field_study.py DEFAULT_FIELD_TAGGER),
+    # characters on, one member per seed of DEFAULT_ENSEMBLE_SEEDS
+    assert [m.training_info["seed"] for m in tagger.members] == list(DEFAULT_ENSEMBLE_SEEDS)
+    for member in tagger.members:
+        assert isinstance(member, BiLstmCrfTagger) and member.device == "cpu"
+        assert member.uses_characters and member.network.char_cnn is not None
+        assert len(member.history) == DEFAULT_FIELD_TAGGER["epochs"]
+        assert member.batch_size == DEFAULT_FIELD_TAGGER["batch_size"]
+        assert member.swa_epochs == DEFAULT_FIELD_TAGGER["swa_epochs"]
+        assert member.training_info["n_train_instructions"] == 2 * len(read_split("train")) + 20000  # splits.CORPORA
+    assert sum(f.stat().st_size for f in DEFAULT_TAGGER_DIR.rglob("*") if f.is_file()) < 4_000_000 * len(tagger.members)
     test_scores = tagger.evaluate(read_split("test"))
     assert test_scores.acc_inst >= 0.994
     assert test_scores.acc_word >= 0.999

@@ -10,7 +10,7 @@ confidence too: ``predict_marginals`` (per word, each label's probability) and
 once with ``predict_confidence`` (one ``TagConfidence`` per instruction); ``to(device)``,
 ``fit(..., device=)`` and ``load_tagger(directory, device=)`` run them on ``"cpu"``,
 ``"cuda"`` or ``"auto"``. The BiLSTM-CRF can read characters too (``CHAR_FEATURES``).
-``default_tagger()`` is the shipped BiLSTM-CRF. ``metrics`` has the paper's Acc_word,
+``default_tagger()`` is the shipped tagger (an ensemble of two BiLSTM-CRFs, ``ensemble``). ``metrics`` has the paper's Acc_word,
 Acc_inst (Table 3) and per-tag error table (Table 4).
 
 >>> from drywall_lab.nlu import default_tagger

@@ -38,13 +38,17 @@ from drywall_lab.nlu.base import (
     TaggerLoadError,
     check_k,
     check_sentences,
-    empty_history,
     load_tagger,
     resolve_device,
 )
 from drywall_lab.nlu.bilstm_crf import BiLstmCrfTagger, crf_confidence
 
 MEMBER_DIR = "member{}"
+
+
+def members_history(members: Sequence[BiLstmCrfTagger]) -> pd.DataFrame:
+    """An ensemble's training history: its members' epochs one after the other, a ``member`` column saying whose."""
+    return pd.concat([m.history.assign(member=i) for i, m in enumerate(members)], ignore_index=True)
 
 
 class CrfEnsembleTagger(Tagger):
@@ -92,6 +96,7 @@ class CrfEnsembleTagger(Tagger):
         if not members:
             raise ValueError("combine needs at least one trained BiLSTM-CRF tagger")
         ensemble = cls(members)
+        ensemble.history = members_history(members)
         ensemble.training_info = {"members": [dict(m.training_info) for m in members]}
         return ensemble
 
@@ -126,6 +131,12 @@ class CrfEnsembleTagger(Tagger):
     def is_trained(self) -> bool:
         return self._crf is not None
 
+    @property
+    def crf(self) -> CRF:
+        """The averaged CRF: its start, end and transition scores are the members' means."""
+        self._check_trained("crf")
+        return self._crf
+
     def n_parameters(self) -> int:
         self._check_trained("n_parameters")
         return sum(m.n_parameters() for m in self.members)
@@ -150,16 +161,14 @@ class CrfEnsembleTagger(Tagger):
         history is the members' epochs one after the other (``member`` column)."""
         if device is not None:
             self._device = resolve_device(device)
-        members, histories = [], []
+        members = []
         for i in range(self.n_members):
             member = BiLstmCrfTagger(labels=self.labels, tag_field=self.tag_field, **self.member_settings)
-            history = member.fit(train_rows, validation_rows, epochs=epochs, progress=progress, seed=seed + i,
-                                 device=self._device)
+            member.fit(train_rows, validation_rows, epochs=epochs, progress=progress, seed=seed + i, device=self._device)
             members.append(member)
-            histories.append(history.assign(member=i))
         self.members = members
         self._combine()
-        self.history = pd.concat(histories, ignore_index=True)
+        self.history = members_history(members)
         self.training_info = {"members": [dict(m.training_info) for m in members], "seed": seed}
         return self.history
 
@@ -219,5 +228,5 @@ class CrfEnsembleTagger(Tagger):
                 raise TaggerLoadError(f"{directory}: member {name} has other labels than the ensemble's tagger.json")
             members.append(member)
         ensemble = cls(members, member_settings=meta["settings"].get("member_settings"))
-        ensemble.history = empty_history()
+        ensemble.history = members_history(members)
         return ensemble

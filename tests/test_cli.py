@@ -87,7 +87,7 @@ def test_demo_prints_each_part_of_the_course(capsys):
     assert list(parts) == [
         "The site (spec section 1)", "Three training instructions with their tags",
         "The corpus against the paper's Table 2", "A student's practice annotation scored against the key",
-        next(k for k in parts if k.startswith("The default tagger (bilstm-crf, ")),
+        next(k for k in parts if k.startswith("The default tagger (bilstm-crf")),
         "The paper's layouts (Figs. 15-18): instruction -> tags -> command",
     ]
     site = parts["The site (spec section 1)"]

@@ -597,10 +597,11 @@ def test_a_rival_torn_between_the_command_and_another_is_no_rival():
     2 ft panel alone still does."""
     words, best = _wt("Unit two , a full/dim sheet on 500103/ID_stud")
     torn = ["width" if w == "two" else t for w, t in zip(words, best)]
-    d = decide(words, [(best, math.log(0.9)), (torn, math.log(0.05))], _sure(best), TAGS)
+    rival = math.log(0.9) - DEFAULT_SETTINGS.margin / 2  # within the margin
+    d = decide(words, [(best, math.log(0.9)), (torn, rival)], _sure(best), TAGS)
     assert d.action == "act" and d.command.drywall_id == "500320"
     alone = ["O" if t == "dim" else t for t in torn]
-    d = decide(words, [(best, math.log(0.9)), (alone, math.log(0.05))], _sure(best), TAGS)
+    d = decide(words, [(best, math.log(0.9)), (alone, rival)], _sure(best), TAGS)
     assert d.action == "ask" and {o[1] for o in d.options} == {"500320", "500321"}
 
 
@@ -641,27 +642,28 @@ def test_rivals_that_read_the_words_less_fully_are_no_rivals():
     the words say lies, and one that leaves out the row phrase the best reading takes its row from ("the next
     bottom-row sheet"). The robot acts on the best reading. A row phrase right after a negation ("skip the top row")
     may well be left out: that rival still asks."""
+    rival = math.log(0.8) - DEFAULT_SETTINGS.margin / 2  # within the margin
     words, best = _wt("take the one from the right stack . Scratch that , the left/Dw_loc1 stack . On 500100/ID_stud")
     abandoned = ["Dw_loc1" if w == "right" else "O" if w == "left" else t for w, t in zip(words, best)]
-    d = decide(words, [(best, math.log(0.8)), (abandoned, math.log(0.1))], _sure(best), TAGS)
+    d = decide(words, [(best, math.log(0.8)), (abandoned, rival)], _sure(best), TAGS)
     assert d.action == "act" and d.command.drywall_id == "500320"
     taken_back = ["Dw_loc1" if w == "right" else t for w, t in zip(words, best)]  # both tagged: "right" taken back
-    d = decide(words, [(taken_back, math.log(0.8)), (abandoned, math.log(0.1))], _sure(taken_back), TAGS)
+    d = decide(words, [(taken_back, math.log(0.8)), (abandoned, rival)], _sure(taken_back), TAGS)
     assert d.action == "act" and d.command.drywall_id == "500320"
 
     words, lying = _wt("the 4/width by 6/length panel lying down at 500102/ID_stud along the bottom/Hr_btm")
     upright = ["O" if t == "Hr_btm" else t for t in lying]
-    d = decide(words, [(lying, math.log(0.8)), (upright, math.log(0.1))], _sure(lying), TAGS)
+    d = decide(words, [(lying, math.log(0.8)), (upright, rival)], _sure(lying), TAGS)
     assert d.action == "act" and d.command.placement.value == "horizontal_bottom"
 
     words, row = _wt("for the next bottom-row/Hr_btm sheet start at 500106/ID_stud , the right/Dw_loc1 stack")
     plain = ["O" if t == "Hr_btm" else t for t in row]
-    d = decide(words, [(row, math.log(0.8)), (plain, math.log(0.1))], _sure(row), TAGS)
+    d = decide(words, [(row, math.log(0.8)), (plain, rival)], _sure(row), TAGS)
     assert d.action == "act" and d.command.placement.value == "horizontal_bottom"
 
     words, row = _wt("the 4x6/width on 500104/ID_stud , skip the top/Hr_top row/Hr_top for now")
     plain = ["O" if t == "Hr_top" else t for t in row]
-    d = decide(words, [(row, math.log(0.8)), (plain, math.log(0.1))], _sure(row), TAGS)
+    d = decide(words, [(row, math.log(0.8)), (plain, rival)], _sure(row), TAGS)
     assert d.action == "ask" and {o[3] for o in d.options} == {"horizontal_top", "vertical_left"}
 
 
@@ -672,9 +674,9 @@ def test_a_half_understood_refusal_may_have_meant_what_a_rival_read():
     history = ActionHistory()
     words, best = _wt("panel left/St_loc1 stud 500103/St_loc2")
     rival = ["Dw_loc1" if w == "left" else "ID_stud" if w == "500103" else "O" for w in words]
-    d = decide(words, [(best, math.log(0.9)), (rival, math.log(0.02))], _sure(best), TAGS, history,
-               replace(DEFAULT_SETTINGS, recover=1.0))
+    settings = replace(DEFAULT_SETTINGS, recover=1.0, margin=5.0)  # the rival within the margin, too rare to ask about
+    d = decide(words, [(best, math.log(0.9)), (rival, math.log(0.02))], _sure(best), TAGS, history, settings)
     assert d.refusal.reason == "undetermined"
-    meant = completions(d, history, "said", DEFAULT_SETTINGS.margin)
+    meant = completions(d, history, "said", settings.margin)
     assert ("command", "500320", "500103", "vertical_left") in meant
     assert ("command", "500320", "500103", "vertical_left") not in completions(d, history, "said", 0.0)

@@ -181,7 +181,8 @@ def _forked_map(function, items: list, jobs: int) -> list:
         try:
             out += receive.recv()
         except EOFError:
-            raise RuntimeError(f"a worker process failed (exit code {process.join() or process.exitcode})") from None
+            process.join()
+            raise RuntimeError(f"a worker process failed (exit code {process.exitcode})") from None
         process.join()
     return out
 

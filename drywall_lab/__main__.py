@@ -106,9 +106,9 @@ def _cmd_demo(args: argparse.Namespace) -> int:
 def _interpretation(args: argparse.Namespace, history: "ActionHistory"):
     """The instruction's interpretation: its markup's tags through the IM (``--tagged``), or a tagger's
     readings through the decision layer, as ``run`` decides (``drywall_lab.decision``)."""
-    from drywall_lab.corpus import tokenize
     from drywall_lab.corpus.markup import parse
     from drywall_lab.im import interpret
+    from drywall_lab.nlu.normalise import normalise
 
     if args.tagged:
         tokens = [t for t in parse(args.text.replace(",", " , ").replace(".", " . ")) if t.is_word]
@@ -116,7 +116,7 @@ def _interpretation(args: argparse.Namespace, history: "ActionHistory"):
     from drywall_lab.decision import interpret_instruction
     from drywall_lab.pipeline import load_tagger_option
 
-    return interpret_instruction(tokenize(args.text), load_tagger_option(args.tagger), history)
+    return interpret_instruction(list(normalise(args.text).words), load_tagger_option(args.tagger), history)
 
 
 def _cmd_interpret(args: argparse.Namespace) -> int:

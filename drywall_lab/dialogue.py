@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, TextIO
 
-from drywall_lab.corpus.io import tokenize
+from drywall_lab.nlu.normalise import normalise
 from drywall_lab.decision import DEFAULT_SETTINGS, Decision, DecisionSettings, decide_instruction
 from drywall_lab.im import ActionHistory, RobotCommand
 from drywall_lab.site import STACK_NAMES, FOOT, Site, SiteState, default_site
@@ -78,7 +78,7 @@ class Dialogue:
                 self.pending = None
                 return Reply("Okay, I will not do that. What should I do instead?")
             self.pending = None  # anything else is a corrected instruction
-        words = tokenize(text)
+        words = list(normalise(text).words)
         if not words:
             return Reply("I did not hear an instruction: which panel should I pick, and which stud does it go on?")
         decision = decide_instruction(words, self.tagger, self.history, self.settings)

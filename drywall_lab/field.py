@@ -435,6 +435,7 @@ def check_own_instructions(instructions: Sequence[str], expected: Mapping[str, s
     says what the pipeline did with one instruction. Returns a ``drywall_lab.course.ExerciseCheck``.
     """
     from drywall_lab.corpus.io import tokenize
+    from drywall_lab.nlu.normalise import normalise
     from drywall_lab.course import ExerciseCheck
     from drywall_lab.decision import decide_episode
     from drywall_lab.nlu import default_tagger
@@ -447,7 +448,7 @@ def check_own_instructions(instructions: Sequence[str], expected: Mapping[str, s
         return ExerciseCheck(False, [f"Write at least {minimum} different instructions; there are {len(distinct)}."])
     right = wrong = 0
     for text in texts:
-        decision = decide_episode([tokenize(text)], tagger)[0]
+        decision = decide_episode([list(normalise(text).words)], tagger)[0]
         tagged = " ".join(w if t == "O" else f"{w}/{t}" for w, t in zip(decision.words, decision.tags))
         if decision.acted:
             got = decision.command.as_contract()

@@ -13,9 +13,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Iterable, Iterator, Mapping, Protocol, Sequence
 
-from drywall_lab.corpus.io import read_jsonl, tokenize
+from drywall_lab.corpus.io import read_jsonl
 from drywall_lab.corpus.markup import parse
 from drywall_lab.im import ActionHistory, InformationMapper, Interpretation
+from drywall_lab.nlu.normalise import Normalised, normalise
 from drywall_lab.site import DATA_DIR, Site
 
 if TYPE_CHECKING:
@@ -85,39 +86,52 @@ def read_episodes(path: Path | str) -> list[dict]:
     return read_jsonl(path, parse_episode)
 
 
-def contract_record(episode_id: str | int, step: int, result: Interpretation) -> dict:
-    """One output line of ``run`` (spec section 6)."""
+def contract_record(episode_id: str | int, step: int, result: Interpretation, said: Normalised | None = None) -> dict:
+    """One output line of ``run`` (spec section 6): the worker's own words (``said``, the front end's reading of
+    the instruction) with the tags of the words they became; without ``said``, the words as interpreted."""
     return {
         "episode": episode_id,
         "step": step,
-        "words": list(result.words),
-        "tags": list(result.tags),
+        "words": list(said.said) if said else list(result.words),
+        "tags": said.tags_of_said(result.tags) if said else list(result.tags),
         "command": result.command.as_contract() if result.command else None,
         "refusal": None if result.command else result.refusal.message,
     }
 
 
+def read_instructions(instructions: Sequence[str]) -> list[Normalised]:
+    """Each instruction read by the front end (``drywall_lab.nlu.normalise``): what the tagger and the IM read."""
+    return [normalise(text) for text in instructions]
+
+
 def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None,
                 settings: "DecisionSettings | None" = None, check: WordTagger | None = None,
-                any_difference: bool = False) -> list[Interpretation]:
-    """Tag every instruction of the episode (one batch), then decide them in order on a fresh site.
+                any_difference: bool = False, read: Sequence[Normalised] | None = None) -> list[Interpretation]:
+    """Read every instruction of the episode through the front end, tag them (one batch), then decide them in
+    order on a fresh site. Each interpretation's trace starts with what the front end changed.
 
     A tagger with confidence (``predict_confidence``, both of the project's taggers) goes through the
     decision layer (``drywall_lab.decision``: IM-aware decoding; a question, refusal reason ``unclear``,
     instead of a guess) with ``settings`` (default ``DEFAULT_SETTINGS``; ``BEST_PATH`` acts on the single
     best tag sequence, as the paper does). Any other tagger's tags are mapped as they are. ``check``: a second
     tagger giving each decision a ``second_opinion`` (``any_difference``: on any other outcome), off by default.
+    ``read``: the instructions already read by ``read_instructions``.
     """
     from drywall_lab.decision import DEFAULT_SETTINGS, decide_episode
 
-    words = [tokenize(text) for text in episode["instructions"]]
+    read = read_instructions(episode["instructions"]) if read is None else read
+    words = [list(n.words) for n in read]
     if hasattr(tagger, "predict_confidence"):
         history = ActionHistory(site)
-        return [d.interpretation for d in decide_episode(words, tagger, settings or DEFAULT_SETTINGS, history,
-                                                         check, any_difference)]
-    tags = tagger.predict(words) if words else []
-    mapper = InformationMapper(site)
-    return [mapper.apply(w, t) for w, t in zip(words, tags)]
+        results = [d.interpretation for d in decide_episode(words, tagger, settings or DEFAULT_SETTINGS, history,
+                                                            check, any_difference)]
+    else:
+        tags = tagger.predict(words) if words else []
+        mapper = InformationMapper(site)
+        results = [mapper.apply(w, t) for w, t in zip(words, tags)]
+    for n, result in zip(read, results):
+        result.trace.steps[:0] = n.trace_steps()
+    return results
 
 
 def run_episodes(episodes: Iterable[Mapping], tagger: WordTagger, site: Site | None = None,
@@ -125,8 +139,9 @@ def run_episodes(episodes: Iterable[Mapping], tagger: WordTagger, site: Site | N
                  any_difference: bool = False) -> Iterator[dict]:
     """The ``run`` output records, episode after episode (spec section 6); ``check`` as in ``run_episode``."""
     for episode in episodes:
-        for step, result in enumerate(run_episode(episode, tagger, site, settings, check, any_difference)):
-            yield contract_record(episode["id"], step, result)
+        read = read_instructions(episode["instructions"])
+        for step, result in enumerate(run_episode(episode, tagger, site, settings, check, any_difference, read)):
+            yield contract_record(episode["id"], step, result, read[step])
 
 
 # --- the paper's layouts ---------------------------------------------------------------------------

@@ -193,7 +193,27 @@ def _words_nobody_says(n: int, seed: int = 0) -> str:
 def test_default_tagger_and_rules_refuse_what_says_nothing(text):
     from drywall_lab.nlu import default_tagger
 
+    from drywall_lab.nlu.normalise import normalise
+
     [result] = run_episode({"id": "odd", "instructions": [text]}, default_tagger())
-    assert result.words == tokenize(text)
+    assert result.words == list(normalise(text).words)
     assert len(result.tags) == len(result.words)
     assert result.command is None and result.refusal.reason == "undetermined", result.refusal
+    [record] = run_episodes([{"id": "odd", "instructions": [text]}], default_tagger())
+    assert record["words"] == tokenize(text) and len(record["tags"]) == len(record["words"])
+
+
+def test_run_reads_through_the_front_end_and_reports_the_workers_own_words():
+    """The tagger and the IM read the normalised words; ``run`` reports the worker's words, each with the tag of
+    the word it became, and the trace starts with what the front end changed (issue 29)."""
+    from drywall_lab.nlu import default_tagger
+
+    text = "um put the four by eight on stud five oh oh one oh four"
+    episode = {"id": "spoken", "instructions": [text]}
+    [result] = run_episode(episode, default_tagger())
+    assert result.words[-1] == "500104" and "um" not in result.words
+    assert [s.stage for s in result.trace][:2] == ["front end", "front end"]
+    [record] = run_episodes([episode], default_tagger())
+    assert record["words"] == tokenize(text)
+    assert record["tags"][-6:] == ["ID_stud"] * 6 and record["tags"][0] == "O"
+    assert record["command"] == {"drywall_id": "500320", "stud_id": "500104", "placement": "vertical_left"}

@@ -40,7 +40,6 @@ from typing import Any, ClassVar, Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from drywall_lab.corpus.io import tokenize
 from drywall_lab.corpus.tags import COREF_TAGS, TAGS
 from drywall_lab.nlu.metrics import TaggingScores, acc_inst, acc_word, score_tagging
 
@@ -358,8 +357,10 @@ class Tagger(ABC):
         return score_tagging(gold, predicted)
 
     def tag_text(self, text: str) -> list[tuple[str, str]]:
-        """Split ``text`` into words as the corpus does and pair each word with its tag."""
-        words = tokenize(text)
+        """Read ``text`` through the front end (``normalise``) and pair each word it reads with its tag."""
+        from drywall_lab.nlu.normalise import normalise
+
+        words = list(normalise(text).words)
         return list(zip(words, self.predict([words])[0]))
 
     def save(self, directory: str | Path) -> Path:

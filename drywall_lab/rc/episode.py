@@ -28,7 +28,7 @@ from typing import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from drywall_lab.corpus import tokenize
+from drywall_lab.nlu.normalise import normalise
 from drywall_lab.decision import interpret_instruction
 from drywall_lab.im import ActionHistory, InformationMapper, Interpretation
 from drywall_lab.pipeline import WordTagger
@@ -199,7 +199,7 @@ def simulate_episode(episode: Mapping, tagger: WordTagger | None = None, record_
         against the history of the placements that succeeded so far."""
         if tagger is None:
             return gold[k][0], gold[k][1], None
-        interpretation = interpret_instruction(tokenize(instructions[k]), tagger, run.mapper.history)
+        interpretation = interpret_instruction(list(normalise(instructions[k]).words), tagger, run.mapper.history)
         return list(interpretation.words), list(interpretation.tags), interpretation
 
     for k in range(n):

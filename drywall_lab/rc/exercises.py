@@ -18,7 +18,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from drywall_lab.corpus.io import tokenize
+from drywall_lab.nlu.normalise import normalise
 from drywall_lab.course import ExerciseCheck
 from drywall_lab.im import ActionHistory, RobotCommand
 from drywall_lab.pipeline import WordTagger
@@ -171,7 +171,7 @@ def check_layout(instructions: Sequence[str], tagger: WordTagger, target: SiteSt
     history = ActionHistory(target.site)
     messages, wrong = [], False
     for k, text in enumerate(instructions):
-        result = interpret_instruction(tokenize(text), tagger, history)
+        result = interpret_instruction(list(normalise(text).words), tagger, history)
         heard = " ".join(f"{w}/{t}" if t != "O" else w for w, t in zip(result.words, result.tags))
         if result.command is not None:
             history.record(result.command)

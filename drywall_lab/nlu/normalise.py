@@ -1,0 +1,451 @@
+"""The front end before tagging: the worker's words, as typed or spoken, to the words the tagger reads (issue 29).
+
+People say and type the same instruction in many surface forms: an id read out digit by digit ("five oh oh one
+oh eight", "five double-oh one one two", "five hundred one-oh-eight") or split ("500 104", "500-104"), a size in
+the plural ("one of the 2x8s"), the site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields
+separated by ``|`` or ``->``), and spoken disfluency (fillers, stutters, a false start broken off with a dash and
+repaired: "the four by- no, the two by eight"). The paper's tagger (Sec. 3.1) learns surface forms from its
+corpus; a form it never met is a guess. This module reads every such form into one written form first, for
+training and prediction alike (``drywall_lab.corpus.field_generator`` writes its rows through it), so that a
+new voice reaches the tagger in words it knows.
+
+It is a small grammar of the project's own, not a general inverse text normaliser: the comparison on a table of
+site forms (``benchmarks/normalisers.py``, ``benchmarks/results/normalisers.md``) found that the general
+libraries do not read ids said digit by digit, which is most of what this site needs. Cardinals and ordinals
+said as single words ("two studs over", "the third pile") are left as said: the tagger and the IM read both
+forms, and rewriting them would turn the pronoun "one" into a count.
+
+Every step is a small pure function on a list of ``Piece`` (a word and the worker's words it comes from), so
+that ``Normalised`` keeps an alignment to the worker's own words: ``run`` reports the worker's words with their
+tags (``tags_of_said``), and the trace lists what was normalised (``changes``).
+"""
+from __future__ import annotations
+
+import csv
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import Callable, Sequence
+
+from drywall_lab.corpus.io import tokenize
+from drywall_lab.im.trace import TraceStep
+from drywall_lab.site import DATA_DIR
+
+LEXICON_PATH = DATA_DIR / "lexicon" / "abbreviations.tsv"
+
+#: Sounds and phrases that carry nothing in an instruction (spoken disfluency).
+FILLERS: frozenset[tuple[str, ...]] = frozenset({
+    ("um",), ("umm",), ("uh",), ("uhh",), ("uhm",), ("er",), ("erm",), ("hmm",), ("ah",), ("eh",),
+    ("you", "know"), ("like,",), ("i", "think"), ("i", "guess"), ("kinda",), ("sorta",),
+})
+#: Words that start a repair after a broken-off word ("the four by- no, the two by eight").
+REPAIR_CUES: tuple[tuple[str, ...], ...] = (("no",), ("sorry",), ("i", "mean"), ("wait",), ("make", "that"),
+                                             ("rather",), ("scratch", "that"))
+#: How far back a repair may start again: the words said just before the break.
+REPAIR_REACH = 4
+DIGIT_WORDS: dict[str, str] = {"zero": "0", "oh": "0", "o": "0", "nought": "0", "one": "1", "two": "2", "three": "3",
+                               "four": "4", "five": "5", "six": "6", "seven": "7", "eight": "8", "nine": "9"}
+TEEN_WORDS: dict[str, str] = {"ten": "10", "eleven": "11", "twelve": "12", "thirteen": "13", "fourteen": "14",
+                              "fifteen": "15", "sixteen": "16", "seventeen": "17", "eighteen": "18", "nineteen": "19"}
+TENS_WORDS: dict[str, str] = {"twenty": "2", "thirty": "3", "forty": "4", "fifty": "5", "sixty": "6", "seventy": "7",
+                              "eighty": "8", "ninety": "9"}
+REPEATS: dict[str, int] = {"double": 2, "triple": 3}
+#: The site's ids are six digits starting 500 (spec section 1: studs 5001xx, panels 5003xx); an unknown one is still
+#: read, to be refused by the IM as unknown.
+ID_PATTERN = re.compile(r"^500\d{3}$")
+_DIGITS = re.compile(r"^\d+$")
+_SPLIT_ID = re.compile(r"^(\d{3})[-–.,](\d{3})$")
+_MARKED_ID = re.compile(r"^(?:#|no\.?|nr\.?|num\.?)(5\d{5})$", re.I)
+_BROKEN_OFF = re.compile(r"[\w'][-–—]+$")
+_FIELD_SEPARATORS = re.compile(r"\s*(?:\||->|=>|→|⇒|—>|:(?=\S))\s*")
+_PLURAL_SIZE = re.compile(r"^(.*?(?:\d|one|two|three|four|five|six|seven|eight|nine|ten|twelve)'?)(?:'?s|es)$", re.I)
+_SIZE_WORD = re.compile(r"(?:\d|four|two|six|eight)'?\s*(?:x|by|-by-)", re.I)
+
+
+@dataclass(frozen=True)
+class Piece:
+    """One word as the tagger will read it, with the indices of the worker's words it comes from."""
+
+    word: str
+    said: tuple[int, ...]
+    broken_off: bool = False  #: the worker broke off after it ("by-"): a false start or a repair follows
+
+
+@dataclass(frozen=True)
+class Change:
+    """One normalisation, for the trace: what kind, the worker's words, what is read instead ("" if dropped)."""
+
+    kind: str
+    said: str
+    read: str
+
+    def __str__(self) -> str:
+        return f"{self.kind}: {self.said!r} -> {self.read!r}" if self.read else f"{self.kind}: {self.said!r} dropped"
+
+
+@dataclass(frozen=True)
+class Normalised:
+    """An instruction read by the front end: the worker's words (``said``, as ``corpus.io.tokenize`` splits them),
+    the words the tagger and the IM read (``words``) and, for each of those, the worker's words it comes from."""
+
+    said: tuple[str, ...]
+    words: tuple[str, ...]
+    sources: tuple[tuple[int, ...], ...]
+    changes: tuple[Change, ...]
+
+    def tags_of_said(self, tags: Sequence[str]) -> list[str]:
+        """The tags of the worker's own words: each takes the tag of the word it became; a dropped word is ``O``."""
+        if len(tags) != len(self.words):
+            raise ValueError(f"{len(tags)} tags for {len(self.words)} normalised words")
+        out = ["O"] * len(self.said)
+        for tag, sources in zip(tags, self.sources):
+            for i in sources:
+                out[i] = tag
+        return out
+
+    def trace_steps(self) -> list[TraceStep]:
+        """What the front end changed, as the first steps of an instruction's rule trace (stage ``front end``)."""
+        return [TraceStep("front end", f"N {c.kind}", True, conclusion=str(c)) for c in self.changes]
+
+    def tags_of_words(self, said_tags: Sequence[str]) -> list[str]:
+        """The tags of the normalised words from the worker's words' tags (a corpus row's gold): each word takes the
+        first tag other than ``O`` among its sources."""
+        if len(said_tags) != len(self.said):
+            raise ValueError(f"{len(said_tags)} tags for {len(self.said)} words")
+        return [next((said_tags[i] for i in sources if said_tags[i] != "O"), "O") for sources in self.sources]
+
+
+# --- the lexicon ----------------------------------------------------------------------------------------
+@lru_cache(maxsize=4)
+def read_lexicon(path: Path | str = LEXICON_PATH) -> tuple[dict[str, str], dict[str, str]]:
+    """The shorthand lexicon (``data/lexicon/abbreviations.tsv``): forms read only as written, and forms read in any
+    case (keys lower-cased)."""
+    exact: dict[str, str] = {}
+    any_case: dict[str, str] = {}
+    with open(path, encoding="utf-8") as f:
+        for number, row in enumerate(csv.reader((line for line in f if line.strip() and not line.startswith("#")),
+                                                delimiter="\t"), start=1):
+            if len(row) != 3 or row[2] not in ("exact", "any"):
+                raise ValueError(f"{path}: entry {number} must be FORM<TAB>READING<TAB>exact|any, not {row}")
+            form, reading, case = row
+            (exact if case == "exact" else any_case)[form if case == "exact" else form.lower()] = reading
+    return exact, any_case
+
+
+# --- steps: each takes and returns a list of pieces, and says what it changed ------------------------------
+Step = Callable[[list[Piece], list[Change]], list[Piece]]
+
+
+def _text(pieces: Sequence[Piece], said: Sequence[str]) -> str:
+    return " ".join(said[i] for p in pieces for i in p.said)
+
+
+def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A form's fields glued by a separator ("Stud:500104", "2x8->500106") are two words. A separator said alone
+    ("|", "->") stays: the IM reads it as punctuation, a boundary between fields."""
+    out: list[Piece] = []
+    for p in pieces:
+        if not _FIELD_SEPARATORS.search(p.word) or not any(c.isalnum() for c in p.word):
+            out.append(p)
+            continue
+        parts = [w for w in _FIELD_SEPARATORS.split(p.word) if w]
+        words = [w for part in parts for w in tokenize(part) if any(c.isalnum() for c in w)]
+        if words != [p.word]:
+            changes.append(Change("separator", p.word, " ".join(words)))
+        out += [Piece(w, p.said, p.broken_off and k == len(words) - 1) for k, w in enumerate(words)]
+    return out
+
+
+#: A lower-case "l" or "r" is a side where a side is due: after these words or before these ("2nd from r",
+#: "to the l of", "l line"); elsewhere a lower-case "r" is a texted "are".
+_BEFORE_SIDE = frozenset({"the", "from", "to", "far", "of", "on"})
+_AFTER_SIDE = frozenset({"of", "from", "line", "edge", "side", "end", "pile", "stack"})
+_SIDES = {"l": "left", "r": "right"}
+
+
+def _side_letter(pieces: Sequence[Piece], k: int) -> str | None:
+    word = pieces[k].word
+    if word not in _SIDES:
+        return None
+    before = pieces[k - 1].word.lower() if k else ""
+    after = pieces[k + 1].word.lower() if k + 1 < len(pieces) else ""
+    count = before.isdigit() or before in DIGIT_WORDS or before in TEEN_WORDS  # "2 r of 500103"
+    return _SIDES[word] if before in _BEFORE_SIDE or after in _AFTER_SIDE or count else None
+
+
+def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path | str = LEXICON_PATH) -> list[Piece]:
+    """The site's shorthand read out in full from the lexicon ("CL" -> "centre line", "btm" -> "bottom"); a
+    lower-case side letter where a side is due ("to the r of")."""
+    exact, any_case = read_lexicon(lexicon)
+    out: list[Piece] = []
+    for k, p in enumerate(pieces):
+        reading = exact.get(p.word, any_case.get(p.word.lower())) or _side_letter(pieces, k)
+        if reading is None:
+            out.append(p)
+            continue
+        changes.append(Change("shorthand", p.word, "" if reading == "-" else reading))
+        if reading != "-":
+            words = reading.split()
+            out += [Piece(w, p.said, p.broken_off and k == len(words) - 1) for k, w in enumerate(words)]
+    return out
+
+
+def _starts(pieces: Sequence[Piece], i: int, phrases: Sequence[tuple[str, ...]] | frozenset) -> int:
+    """The length of the phrase of ``phrases`` that starts at ``i`` (0: none)."""
+    for phrase in sorted(phrases, key=len, reverse=True):
+        if tuple(p.word.lower() for p in pieces[i:i + len(phrase)]) == phrase:
+            return len(phrase)
+    return 0
+
+
+def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """Fillers ("um", "uh", "you know") are dropped; a word broken off before one stays broken off."""
+    out: list[Piece] = []
+    i = 0
+    while i < len(pieces):
+        n = _starts(pieces, i, FILLERS)
+        if n:
+            changes.append(Change("filler", " ".join(p.word for p in pieces[i:i + n]), ""))
+            if out and pieces[i + n - 1].broken_off:
+                out[-1] = Piece(out[-1].word, out[-1].said, True)
+            i += n
+            continue
+        out.append(pieces[i])
+        i += 1
+    return out
+
+
+# --- numbers --------------------------------------------------------------------------------------------
+def _number_parts(word: str) -> list[str] | None:
+    """The parts of a word that belongs to a spoken or split number ("one-oh-eight" -> ["one", "oh", "eight"]),
+    or None."""
+    w = word.lower()
+    if _DIGITS.match(w) or w in DIGIT_WORDS or w in TEEN_WORDS or w in TENS_WORDS or w in REPEATS or w == "hundred":
+        return [w]
+    marked = _MARKED_ID.match(w)
+    if marked:
+        return [marked.group(1)]
+    split = _SPLIT_ID.match(w)
+    if split:
+        return [split.group(1), split.group(2)]
+    parts = w.split("-")
+    if len(parts) > 1 and all(p in DIGIT_WORDS or p in TEEN_WORDS or p in TENS_WORDS or p in REPEATS or _DIGITS.match(p)
+                              for p in parts if p):
+        return [p for p in parts if p]
+    return None
+
+
+def digits_of(parts: Sequence[str]) -> str | None:
+    """The digit string a run of number parts says, read out as ids are ("five double oh one one two" -> "500112",
+    "five hundred one oh eight" -> "500108"); None if it says no digit string."""
+    out = ""
+    repeat = 1
+    for k, part in enumerate(parts):
+        if part in REPEATS:
+            if repeat != 1:
+                return None
+            repeat = REPEATS[part]
+            continue
+        if part == "hundred":
+            if not out or repeat != 1:
+                return None
+            out += "00"
+            continue
+        if part in TENS_WORDS:  # "twenty" is 20; "twenty two" is 22
+            nxt = parts[k + 1] if k + 1 < len(parts) else ""
+            out += TENS_WORDS[part] + ("" if nxt in DIGIT_WORDS and nxt not in ("oh", "o", "zero") else "0")
+            continue
+        digits = part if _DIGITS.match(part) else DIGIT_WORDS.get(part, TEEN_WORDS.get(part))
+        if digits is None:
+            return None
+        if repeat != 1:
+            if len(digits) != 1:
+                return None
+            digits *= repeat
+            repeat = 1
+        if k and parts[k - 1] == "hundred" and out.endswith("00") and len(digits) <= 2 and \
+                k + 1 == len(parts) and len(out) + len(digits) < 6:
+            out = out[:-len(digits)] + digits  # "five hundred four": 504, a number, not an id
+            continue
+        out += digits
+    return out if repeat == 1 and out else None
+
+
+def _repaired_id(before: str, repair: Sequence[Piece]) -> tuple[str, int] | None:
+    """An id broken off and repaired ("five oh oh one one- no, one one one"): the repair says the id's last digits
+    again, starting at a digit said before the break that it repeats (or right after the break). The id and how
+    many of ``repair``'s pieces it takes (as many as make an id), or None where no reading gives an id."""
+    for k in range(len(repair), 0, -1):
+        again = digits_of(_parts(repair[:k])) or ""
+        start = 6 - len(again)
+        if again and 0 < start <= len(before) and (start == len(before) or before[start] == again[0]) \
+                and ID_PATTERN.match(before[:start] + again):
+            return before[:start] + again, k
+    return None
+
+
+def _first_id(run: Sequence[Piece], k: int) -> tuple[int, int] | None:
+    """The first stretch of a run of number words from ``k`` on that says an id, as long as it can be: "station two,
+    five double-oh three one two" has one in its last five words, "500 320 five hundred one-oh-oh" two."""
+    for a in range(k, len(run)):
+        for b in range(len(run), a, -1):
+            if ID_PATTERN.match(digits_of(_parts(run[a:b])) or ""):
+                return a, b
+    return None
+
+
+def _parts(run: Sequence[Piece]) -> list[str]:
+    return [part for p in run for part in _number_parts(p.word) or []]
+
+
+def _number_run(pieces: Sequence[Piece], i: int) -> int:
+    """The end of the run of number words starting at ``i`` (a word broken off ends it)."""
+    j = i
+    while j < len(pieces) and _number_parts(pieces[j].word) is not None:
+        j += 1
+        if pieces[j - 1].broken_off:
+            break
+    return j
+
+
+def _id_piece(run: Sequence[Piece], digits: str, changes: list[Change], also: Sequence[Piece] = ()) -> Piece:
+    """One word for an id said in several (``also``: the words of a repair that it covers too)."""
+    words = [*run, *also]
+    if len(words) > 1 or words[0].word != digits:
+        changes.append(Change("id", " ".join(p.word for p in words), digits))
+    return Piece(digits, tuple(s for p in words for s in p.said), words[-1].broken_off)
+
+
+def read_ids(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """Ids as people say and type them, read as six digits: digit by digit ("five oh oh one oh eight"), with
+    "double", "hundred" or a teen ("five oh oh one twelve"), split ("500 104", "500-104", "#500104"), several in
+    one run of number words, and broken off and repaired ("five oh oh one one- no, one one one"). Number words
+    that say no id are left as said."""
+    out: list[Piece] = []
+    i = 0
+    while i < len(pieces):
+        j = _number_run(pieces, i)
+        if j == i:
+            out.append(pieces[i])
+            i += 1
+            continue
+        run = pieces[i:j]
+        k = 0
+        while (found := _first_id(run, k)) is not None:
+            a, b = found
+            out += run[k:a]
+            out.append(_id_piece(run[a:b], digits_of(_parts(run[a:b])) or "", changes))
+            k = b
+        rest = run[k:]
+        cue = _starts(pieces, j, REPAIR_CUES) if j < len(pieces) else 0
+        if rest and rest[-1].broken_off and cue:
+            end = _number_run(pieces, j + cue)
+            for a in range(len(rest)):
+                fixed = _repaired_id(digits_of(_parts(rest[a:])) or "", pieces[j + cue:end])
+                if fixed:
+                    digits, used = fixed
+                    out += rest[:a]
+                    out.append(_id_piece(rest[a:], digits, changes, pieces[j:j + cue + used]))
+                    rest, j = [], j + cue + used
+                    break
+        out += rest
+        i = j
+    return out
+
+
+def singular_sizes(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A size in the plural names one panel of that size: "the 2x8s" -> "2x8", "two-by-eights" -> "two-by-eight",
+    "four by eights" -> "four by eight"."""
+    out: list[Piece] = []
+    for k, p in enumerate(pieces):
+        plural = _PLURAL_SIZE.match(p.word)
+        after_by = k > 0 and pieces[k - 1].word.lower() in ("by", "x")
+        if plural and (after_by or _SIZE_WORD.search(p.word)) and not ID_PATTERN.match(plural.group(1)):
+            changes.append(Change("size", p.word, plural.group(1)))
+            out.append(Piece(plural.group(1), p.said, p.broken_off))
+        else:
+            out.append(p)
+    return out
+
+
+# --- disfluency ---------------------------------------------------------------------------------------------
+def resolve_false_starts(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A word broken off with a dash is a false start: said again ("the- the", "fo- four") it is dropped; followed by
+    a repair cue ("the four by- no, the two by eight") the words from where the repair starts again are dropped
+    with the cue (the final intention counts). The repair starts again at the last earlier word equal to its own
+    first word, or at the broken-off word."""
+    out: list[Piece] = []
+    i = 0
+    while i < len(pieces):
+        p = pieces[i]
+        if not p.broken_off or i + 1 >= len(pieces):
+            out.append(Piece(p.word, p.said) if p.broken_off else p)
+            i += 1
+            continue
+        nxt = pieces[i + 1].word.lower()
+        stem = p.word.lower()
+        if nxt == stem or (len(stem) >= 2 and nxt.startswith(stem)):
+            changes.append(Change("false start", p.word, ""))
+            i += 1
+            continue
+        cue = _starts(pieces, i + 1, REPAIR_CUES)
+        if cue and i + 1 + cue < len(pieces):
+            first = pieces[i + 1 + cue].word.lower()
+            start = next((k for k in range(len(out) - 1, max(-1, len(out) - 1 - REPAIR_REACH), -1)
+                          if out[k].word.lower() == first), len(out))
+            dropped = out[start:] + pieces[i:i + 1 + cue]
+            changes.append(Change("repair", " ".join(d.word for d in dropped), ""))
+            out = out[:start]
+            i += 1 + cue
+            continue
+        out.append(Piece(p.word, p.said))
+        i += 1
+    return out
+
+
+#: The front end's steps, in order.
+STEPS: tuple[Step, ...] = (split_fields, expand_shorthand, drop_fillers, read_ids, resolve_false_starts, singular_sizes)
+
+
+#: Written labels that only introduce the number after them ("stud no. 500104"); their full stop is what tells them
+#: from the word "no", so they are read before ``tokenize`` drops it.
+_LABELS = frozenset({"no.", "nr.", "num.", "no:"})
+#: Words whose comma marks them as fillers ("grab, like, the ..."): read with it, for ``FILLERS``.
+_COMMA_FILLERS = frozenset({"like,"})
+
+
+def _pieces(text: str) -> tuple[list[str], list[Piece]]:
+    """The worker's words (as ``corpus.io.tokenize`` splits them) and a piece for each: a word broken off with a
+    dash loses the dash; a label's full stop is kept for the lexicon."""
+    said: list[str] = []
+    pieces: list[Piece] = []
+    for raw in text.split():
+        for word in tokenize(raw):
+            broken_off = bool(_BROKEN_OFF.search(raw))
+            read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word
+            pieces.append(Piece(read, (len(said),), broken_off))
+            said.append(word)
+    return said, pieces
+
+
+def normalise(text: str) -> Normalised:
+    """The instruction ``text`` read by the front end (module docstring): the worker's words, the words to tag,
+    their alignment and what changed.
+
+    >>> n = normalise("uh put the two-by-eights on stud five oh oh one oh four, CL")
+    >>> n.words
+    ('put', 'the', 'two-by-eight', 'on', 'stud', '500104', 'centre', 'line')
+    >>> n.said[5:10]
+    ('five', 'oh', 'oh', 'one', 'oh')
+    """
+    said, pieces = _pieces(text)
+    changes: list[Change] = []
+    for step in STEPS:
+        pieces = step(pieces, changes)
+    return Normalised(tuple(said), tuple(p.word for p in pieces), tuple(p.said for p in pieces), tuple(changes))
+
+
+def normalise_text(text: str) -> str:
+    """The normalised words of ``text`` as one string (the form ``benchmarks/normalisers.py`` compares)."""
+    return " ".join(normalise(text).words)

@@ -1,0 +1,121 @@
+"""The front end before tagging (drywall_lab/nlu/normalise.py): forms read, alignment kept, nothing invented."""
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from drywall_lab.corpus import field_generator as FG
+from drywall_lab.corpus.io import tokenize
+from drywall_lab.nlu import normalise as N
+
+
+@pytest.mark.parametrize("said, read", [
+    ("put it on stud five oh oh one oh four", "put it on stud 500104"),
+    ("five hundred one-oh-eight", "500108"),
+    ("five double-oh one one two", "500112"),
+    ("five oh oh three twenty", "500320"),
+    ("on 500 104 please", "on 500104 please"),
+    ("500-104", "500104"),
+    ("#500104", "500104"),
+    ("stud no. 500103", "stud 500103"),
+    ("radio two, five double-oh three one two", "radio two 500312"),
+    ("ON NUMBER 500 107 TEN MINUTES AGO", "ON NUMBER 500107 TEN MINUTES AGO"),
+])
+def test_ids_as_people_say_and_type_them_are_six_digits(said, read):
+    assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
+    ("stud five oh oh one one- no, one one one", "stud 500111"),
+    ("five oh oh one seven- sorry one one one", "500111"),
+    ("on five oh oh one oh- I mean one one two", "on 500112"),
+])
+def test_an_id_broken_off_and_repaired_is_the_repair(said, read):
+    assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
+    ("the two-by-eights", "the two-by-eight"),
+    ("one of the 4x6s", "one of the 4x6"),
+    ("the four by eights", "the four by eight"),
+    ("two studs over", "two studs over"),  # counts stay as said
+    ("the third pile", "the third pile"),
+    ("one of those", "one of those"),
+    ("the one you just used", "the one you just used"),
+])
+def test_sizes_in_the_plural_name_one_panel_and_counts_stay_as_said(said, read):
+    assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
+    ("PNL: 2x8 | STUD: 500106 | BTM", "panel 2x8 | STUD 500106 | bottom"),
+    ("Stud:500104 -> vert w/ CL", "Stud 500104 -> vertical with centre line"),
+    ("2nd from R", "2nd from right"),
+    ("one to the r of 500301", "one to the right of 500301"),
+    ("u r fast", "u r fast"),  # a texted "are" is no side
+    ("on the c/l", "on the centre line"),
+])
+def test_shorthand_is_read_from_the_lexicon(said, read):
+    assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
+    ("um put it, you know, on 500104", "put it on 500104"),
+    ("grab, like, the 2x8", "grab the 2x8"),
+    ("like the previous one", "like the previous one"),  # a back-reference, not a filler
+    ("the- the four-by-six on 500101", "the four-by-six on 500101"),
+    ("the four by- no, the two by eight", "the two by eight"),
+    ("take a 4x- sorry 2x8", "take a 2x8"),
+])
+def test_fillers_and_false_starts_go_the_final_intention_stays(said, read):
+    assert N.normalise_text(said) == read
+
+
+def test_a_repair_starts_again_only_from_the_words_just_before_the_break():
+    text = "I said the 4 feet wide one but I meant one of the 6 feet long x six- I mean 4 feet wide boards"
+    assert N.normalise_text(text).endswith("I meant one of the 6 feet long x 4 feet wide boards")
+
+
+def test_the_alignment_gives_the_workers_words_their_tags_and_the_trace_says_what_changed():
+    n = N.normalise("uh put it on five oh oh one oh four CL")
+    assert n.said == tuple(tokenize("uh put it on five oh oh one oh four CL"))
+    assert n.words == ("put", "it", "on", "500104", "centre", "line")
+    tags = ["O", "O", "O", "ID_stud", "Vr_md", "Vr_md"]
+    assert n.tags_of_said(tags) == ["O", "O", "O", "O"] + ["ID_stud"] * 6 + ["Vr_md"]
+    assert n.tags_of_words(n.tags_of_said(tags)) == tags
+    kinds = [step.conclusion.split(":")[0] for step in n.trace_steps()]
+    assert kinds == ["shorthand", "filler", "id"]
+    with pytest.raises(ValueError, match="tags for"):
+        n.tags_of_said(["O"])
+
+
+def test_a_bad_lexicon_line_is_named(tmp_path):
+    bad = tmp_path / "lexicon.tsv"
+    bad.write_text("CL\tcentre line\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="entry 1"):
+        N.read_lexicon(bad)
+
+
+_WORDS = st.sampled_from(["put", "the", "2x8s", "on", "five", "oh", "one", "double", "hundred", "-", "|", "no", "um",
+                          "CL", "r", "L", "by-", "the-", "500", "104", "#500104", "like,", "stud", "eight", "twenty",
+                          "sorry", "I", "mean", "4x", "x", "you", "know", "", "!", "->"])
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(_WORDS, max_size=14))
+def test_every_word_read_comes_from_the_workers_words_in_order(words):
+    n = N.normalise(" ".join(words))
+    assert n.said == tuple(tokenize(" ".join(words)))
+    assert len(n.words) == len(n.sources)
+    flat = [i for sources in n.sources for i in sources]
+    assert flat == sorted(flat) and all(0 <= i < len(n.said) for i in flat)
+    assert all(w and not w.isspace() for w in n.words)
+    assert len(n.tags_of_said(["O"] * len(n.words))) == len(n.said)
+
+
+@pytest.mark.parametrize("split", FG.COMMITTED_SPLITS)
+def test_a_corpus_row_holds_the_words_the_front_end_reads_from_its_text(split):
+    """Training and prediction read the same words: each committed row is its text through the front end."""
+    rows = FG.field_split(split)
+    assert all(list(N.normalise(r["text"]).words) == r["words"] for r in rows)

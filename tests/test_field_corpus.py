@@ -75,8 +75,12 @@ def test_a_sample_of_train_gives_its_expected_outcome_with_gold_tags(train):
 
 
 def test_rows_are_well_formed(committed, train):
+    from drywall_lab.corpus.channels import CHANNELS
+    from drywall_lab.nlu.normalise import normalise
+
     for row in [r for rows in committed.values() for r in rows] + train[::20]:
-        assert row["words"] == tokenize(row["text"]), row["id"]
+        assert row["words"] == list(normalise(row["text"]).words), row["id"]  # the text through the front end
+        assert set(row["channels"]) <= set(CHANNELS), row["id"]
         assert len(row["tags"]) == len(row["words"]) == len(row["coref_tags"])
         assert set(row["tags"]) <= set(TAGS) and set(row["coref_tags"]) <= set(COREF_TAGS)
         assert row["register"] in FG.REGISTERS
@@ -204,8 +208,12 @@ def test_context_that_sets_the_placement_is_tagged_and_a_bare_side_names_a_stack
             and re.search(r"\b(what|panel|sheet|board|target)\s*[:=]?\s*(far )?(left|middle|right|centre|center)( one)?\s*[.,;|]",
                           r["text"].lower())]
     assert len(bare) >= 10  # 13 in the train split of 2026-12-02 (one written form of the construction)
-    for row in bare:
-        first = next(i for i, w in enumerate(row["words"]) if w.lower() in ("left", "middle", "right", "centre", "center"))
+    sides = ("left", "middle", "right", "centre", "center")
+    for row in bare:  # the side right after the key (an aside before it may name sides of other things)
+        words = [w.lower() for w in row["words"]]
+        key = next(i for i, w in enumerate(words) if w in ("what", "panel", "sheet", "board", "target")
+                   and any(x in sides for x in words[i + 1:i + 3]))
+        first = next(i for i in range(key + 1, key + 3) if words[i] in sides)
         assert row["tags"][first] == "Dw_loc1", row["text"]
 
 

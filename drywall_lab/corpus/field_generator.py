@@ -21,8 +21,12 @@ placements, every refusal) and says them through a much richer grammar:
 - **noise**: dropped articles, inserted fillers, lost casing and punctuation (or Title Case, or a
   boss's capitals), stutters and typos in words that carry no tag.
 
+Then **noise channels** (``channels.py``: spoken ids, shorthand, disfluency, asides, plural sizes), in any register,
+rewrite how it is said; the novel split alone has the channels held back from training. Each row's words are its
+text read through the front end (``drywall_lab.nlu.normalise``), as a worker's instruction is before tagging.
+
 Every row has the paper corpus's fields (words, 13-label tags, co-reference tags, context, meaning,
-expected) plus its ``register``. With the gold tags every row gives its expected command or refusal
+expected) plus its ``register`` and ``channels``. With the gold tags every row gives its expected command or refusal
 through the information-mapping rules (tested). Splits: ``train`` (generated on demand, not committed),
 ``validation`` and ``test`` (the same families as train), and ``novel``: only held-back families
 (``field_phrases.HELD_BACK``) wherever a bank has them.
@@ -35,6 +39,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
 
+from drywall_lab.corpus import channels as C
 from drywall_lab.corpus import field_phrases as F
 from drywall_lab.corpus import generator as G
 from drywall_lab.corpus.io import read_jsonl, tokenize, write_jsonl
@@ -1131,6 +1136,18 @@ def render(ch: Chooser, sentences: Sentences, spoken: bool,
     return " ".join(pieces), words, tags, coref
 
 
+def read_through_front_end(said: tuple[str, list[str], list[str], list[str]]) -> tuple[str, list[str], list[str], list[str]]:
+    """A rendered instruction as the tagger reads it: its words through the front end (``nlu.normalise``), each
+    normalised word tagged as the words it comes from. Training and prediction read the same words."""
+    from drywall_lab.nlu.normalise import normalise
+
+    text, words, tags, coref = said
+    read = normalise(text)
+    if list(read.said) != words:
+        raise ValueError(f"the front end split {text!r} into {list(read.said)}, not {words}")
+    return text, list(read.words), read.tags_of_words(tags), read.tags_of_words(coref)
+
+
 # --- episodes and splits ------------------------------------------------------------------------------
 def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict]:
     ch = Chooser(rng, novel=(split == "novel"))
@@ -1153,11 +1170,14 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
             sentences = add_noise(ch, sentences, spoken)
             if register == "texting":
                 sentences = texting_forms(ch, sentences)
-            said = render(ch, sentences, spoken, shout=register == "boss")
+            channels = C.choose_channels(rng, novel=split == "novel")
+            sentences = C.apply_channels(ch, sentences, channels)
+            said = read_through_front_end(render(ch, sentences, spoken, shout=register == "boss"))
             if not said[1]:
                 continue
             rows.append(G.corpus_row(f"field-{split}-{len(rows):05d}", said, len(sentences),
-                                     f"field-{split}-ep{episode_no:05d}", step, ep, meaning, register=register))
+                                     f"field-{split}-ep{episode_no:05d}", step, ep, meaning, register=register,
+                                     channels=list(channels)))
             ep.accept(meaning)
         episode_no += 1
     return rows
@@ -1191,10 +1211,13 @@ def write_field_corpus(out_dir: Path | str = FIELD_DIR, seed: int = FIELD_SEED,
 
 
 def generator_fingerprint(seed: int = FIELD_SEED) -> str:
-    """A hash of everything a generated split depends on: the corpus package's source, the site tables, the seed
-    and the split sizes. The cached ``train`` split carries it, so a changed generator never reads a stale one."""
+    """A hash of everything a generated split depends on: the corpus package's source, the front end and its
+    lexicon, the site tables, the seed and the split sizes. The cached ``train`` split carries it, so a changed generator never reads a stale one."""
     digest = hashlib.sha256(f"{seed} {sorted(FIELD_SPLIT_SIZES.items())}".encode())
-    sources = sorted(Path(__file__).resolve().parent.glob("*.py")) + sorted((DATA_DIR / "site").glob("*.csv"))
+    from drywall_lab.nlu import normalise as front_end  # the rows are read through it
+
+    sources = sorted(Path(__file__).resolve().parent.glob("*.py")) + sorted((DATA_DIR / "site").glob("*.csv")) + \
+        [Path(front_end.__file__), Path(front_end.LEXICON_PATH)]
     for source in sources:
         digest.update(source.name.encode() + b"\0" + source.read_bytes())
     return digest.hexdigest()

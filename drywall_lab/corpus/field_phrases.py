@@ -141,7 +141,7 @@ STORIES = [
     "yesterday we finished the other wall", "last week we had to pull two sheets off because the joints lined up",
     "this morning the framer fixed the crooked stud", "when I started we had four guys on one wall",
     "the last crew left this wall half done", "we had a sheet crack on us earlier",
-    "the inspector came by and said the wall looks good", "on the last job we did every wall sideways",
+    "the inspector came by and said the wall looks good", "on the last job every wall went sideways and the joints were a pain",
     "the delivery came late so we lost an hour", "before lunch we did the bottom on the other side",
     "the taper complained about the seams on the east wall", "we got the layout from the engineer today",
     "the foreman checked the first few and they were fine", "somebody put a screw through a pipe last month",
@@ -408,7 +408,7 @@ PLACEMENT = {
         "stood up on its end", "standing up like always", "left edge on the {stud}", "edge on the left of the {stud}",
         # the default named as the robot names it (spec section 4, and the robot's own questions): still all O
         "on the left line", "on its left line", "left line", "on the left line of the {stud}", "edge on the left line",
-        "left edge on the left line", "default , left line", "the default", "default", "on the {stud}'s left line",
+        "left edge on the left line", "default , left line", "the default", "default", "on the stud's left line",
         "lined up on the left line", "the normal left line",
     ],
     "vertical_middle": [

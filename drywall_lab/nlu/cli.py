@@ -182,7 +182,26 @@ def evaluate_split(
     return (gold, tagger.predict([r["words"] for r in rows]), tagger.labels) + ((tagger,) if return_tagger else ())
 
 
-def task_figures(split: str, predicted: Sequence[Sequence[str]], tagger: Tagger | None = None) -> dict[str, float]:
+def scores_by_channel(rows: Sequence[dict], decisions: Sequence) -> "pd.DataFrame":
+    """The decision layer's figures for the rows that went through each noise channel (``corpus.channels``;
+    ``none``: the rows that went through none), one line a channel: n, acc_decided, wrong_action_rate."""
+    import pandas as pd
+
+    from drywall_lab.corpus.channels import CHANNELS
+    from drywall_lab.decision import decision_scores
+
+    lines = []
+    for name in ("none", *CHANNELS):
+        picked = [(r, d) for r, d in zip(rows, decisions) if (name in r["channels"] if name != "none" else not r["channels"])]
+        if picked:
+            scores = decision_scores([r for r, _ in picked], [d for _, d in picked])
+            lines.append({"channel": name, "n": len(picked), "acc_decided": scores["accuracy"],
+                          "wrong_action_rate": scores["wrong_action_rate"]})
+    return pd.DataFrame(lines, columns=["channel", "n", "acc_decided", "wrong_action_rate"])
+
+
+def task_figures(split: str, predicted: Sequence[Sequence[str]], tagger: Tagger | None = None,
+                 by_channel: list | None = None) -> dict[str, float]:
     """``acc_task``: the share of the split's instructions whose final command (or refusal) is the
     intended one when the predicted tags go through the information-mapping rules (``drywall_lab.im``).
 
@@ -190,7 +209,8 @@ def task_figures(split: str, predicted: Sequence[Sequence[str]], tagger: Tagger 
     ``acc_decided`` (the intended command, or a refusal or question where a refusal was intended),
     ``wrong_action_rate`` (acted, not as intended), ``over_refusal_rate`` (a refusal or question where a
     command was intended) and ``coverage`` (the share acted on). Co-reference tags (``Trg``, ``Dst``) are
-    read as ``O`` by the rules, so this works for both tag sets."""
+    read as ``O`` by the rules, so this works for both tag sets. ``by_channel``: a list that receives the
+    decision layer's figures by noise channel (``scores_by_channel``) where the rows record their channels."""
     from drywall_lab.im import task_accuracy
     from drywall_lab.splits import split_rows
 
@@ -199,7 +219,10 @@ def task_figures(split: str, predicted: Sequence[Sequence[str]], tagger: Tagger 
     if tagger is not None and tagger.tag_field == "tags":
         from drywall_lab.decision import decide_rows, decision_scores
 
-        scores = decision_scores(rows, decide_rows(rows, tagger))
+        decisions = decide_rows(rows, tagger)
+        scores = decision_scores(rows, decisions)
+        if by_channel is not None and rows and "channels" in rows[0]:
+            by_channel.append(scores_by_channel(rows, decisions))
         figures.update(acc_decided=scores["accuracy"], wrong_action_rate=scores["wrong_action_rate"],
                        over_refusal_rate=scores["over_refusal_rate"], coverage=scores["coverage"])
     return figures
@@ -223,7 +246,13 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
             print(f"  {row.gold} -> {row.predicted}: {row.count}")
     else:
         print("no mix-ups")
-    print(result_line(scores, task_figures(args.split, predicted, tagger)))
+    by_channel: list = []
+    figures = task_figures(args.split, predicted, tagger, by_channel)
+    if by_channel:
+        print()
+        print("the decision layer by noise channel (drywall_lab/corpus/channels.py)")
+        print(by_channel[0].to_string(index=False, float_format=lambda x: f"{x:.2%}"))
+    print(result_line(scores, figures))
     return 0
 
 

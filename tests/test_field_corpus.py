@@ -212,8 +212,8 @@ def test_context_that_sets_the_placement_is_tagged_and_a_bare_side_names_a_stack
     for row in bare:  # the side right after the key (an aside before it may name sides of other things)
         words = [w.lower() for w in row["words"]]
         key = next(i for i, w in enumerate(words) if w in ("what", "panel", "sheet", "board", "target")
-                   and any(x in sides for x in words[i + 1:i + 3]))
-        first = next(i for i in range(key + 1, key + 3) if words[i] in sides)
+                   and any(x in sides for x in words[i + 1:i + 4]))
+        first = next(i for i in range(key + 1, key + 4) if words[i] in sides)
         assert row["tags"][first] == "Dw_loc1", row["text"]
 
 

@@ -6,6 +6,8 @@ information-mapping rules and the decision layer, episode by episode) on
 - ``data/field/``: the project's own hand-written set (evaluation only; ``data/field/README.md``), and
 - ``../shared/field/``, when it exists beside the checkout: a measuring stick kept outside the project,
   scored by this script and by its own ``score.py``;
+- ``data/first_sight/*/``: the first-sight sets (issue 29), each scored once blind when it was written
+  (its README records that figure) and a regression set since;
 
 and prints, by voice and overall, accuracy (the intended command, or a refusal where one was expected),
 the wrong-action rate (the robot acted, and not as intended), the over-refusal rate (a refusal or a
@@ -42,11 +44,17 @@ RESULTS = Path(__file__).resolve().parent / "results" / "field.md"
 COLUMNS = ["n", "accuracy", "wrong_action_rate", "over_refusal_rate", "refusal_precision", "refusal_recall"]
 
 
+FIRST_SIGHT = ROOT / "data" / "first_sight"
+
+
 def field_sets() -> dict[str, Path]:
-    """The sets to score: the project's own, and the shared one where it exists."""
+    """The sets to score: the project's own, the shared one where it exists, and each first-sight set
+    (``data/first_sight/DATE/``: scored once blind when it was written, a regression set since)."""
     sets = {"data_field": FIELD_DIR}
     if (SHARED_FIELD / "instructions.jsonl").is_file():
         sets["shared_field"] = SHARED_FIELD
+    for directory in sorted(FIRST_SIGHT.glob("*/instructions.jsonl")):
+        sets["first_sight_" + directory.parent.name.replace("-", "_")] = directory.parent
     return sets
 
 

@@ -50,3 +50,22 @@ def test_spoken_ids_say_the_same_id():
     for ident in ["500100", "500112", "500321", "500310"]:
         for _ in range(30):
             assert normalise_text(" ".join(C.say_id(rng, ident))) == ident
+
+
+def test_evaluate_reports_the_decision_layer_by_channel(splits):
+    """``nlu.cli.scores_by_channel``: one line a channel met (and ``none``), its rows counted; gold tags are right on
+    every one."""
+    from drywall_lab.corpus.tags import TAGS
+    from drywall_lab.decision import decide_tags
+    from drywall_lab.im import ActionHistory
+    from drywall_lab.nlu.cli import scores_by_channel
+
+    rows = splits["novel"][:40]
+    decisions = [decide_tags(r["words"], r["tags"], TAGS, ActionHistory.from_commands(r["context"]["history"]))
+                 for r in rows]
+    table = scores_by_channel(rows, decisions).set_index("channel")
+    met = {name for r in rows for name in r["channels"]}
+    assert set(table.index) - {"none"} == met
+    for name in met:
+        assert table.loc[name, "n"] == sum(name in r["channels"] for r in rows)
+    assert (table["acc_decided"] == 1.0).all() and (table["wrong_action_rate"] == 0.0).all()

@@ -17,15 +17,36 @@ Each member is a saved BiLSTM-CRF in its own sub-directory (``member0/``, ``memb
 directory, whose ``tagger.json`` names them; ``load_tagger`` loads it as any tagger. ``combine`` builds one from
 trained taggers (``python -m drywall_lab ensemble --member DIR --member DIR ... --out DIR``); ``fit`` trains the
 members itself, seeds ``seed``, ``seed + 1``, ...
+
+**Speed** (issue 29). A second member doubled the network's cost, and on a CPU a single short instruction is
+mostly per-call costs around a small amount of arithmetic. At prediction the members therefore run as one
+computation wherever they read their input alike (the same vocabulary, characters, id handling and widths, as
+members trained on the same data do; ``_FusedMembers``): a batch's words and characters are turned into ids once
+and looked up once in the members' embedding tables concatenated, the LSTMs read one packed batch (each member its
+own columns), and the Viterbi path, the marginals and the k best use the averaged CRF's scores made into NumPy arrays
+once, at load (the Viterbi path is a NumPy transcription of ``torchcrf``'s decode: the same float32 additions in
+the same order). Each member's own convolution, LSTM and linear layer still does its own arithmetic, so the
+emissions are the member-by-member computation's bit for bit at the same thread setting; that computation is kept
+(``_batches``, ``_reference_emissions``, ``_reference_predict``, ``_reference_confidence``) and
+``tests/test_ensemble_speed.py`` compares the two. A batch of at most ``SINGLE_THREAD_WORDS`` words (one instruction)
+runs on one intra-op thread, torch's setting restored after: on a 2-core machine that is also running other work,
+two threads' synchronisation on matrices this small costs more than it saves. The members' LSTMs, nearly all the
+remaining time, still run one after the other: ``torch.vmap`` over the members has no batching rule for
+``aten::lstm`` (torch 2.13), and on a CPU one block-diagonal LSTM of the members' summed width (four times the
+arithmetic) and one ``bmm`` recurrence over all members and directions (a Python loop over the words) were both
+slower than two ``torch.lstm`` calls.
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any, Iterator, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 import torch
+import torch.nn.functional as F
+from torch.nn.utils.rnn import PackedSequence, pack_padded_sequence, pad_packed_sequence
 from torchcrf import CRF
 
 from drywall_lab.corpus.tags import TAGS
@@ -41,14 +62,149 @@ from drywall_lab.nlu.base import (
     load_tagger,
     resolve_device,
 )
-from drywall_lab.nlu.bilstm_crf import BiLstmCrfTagger, crf_confidence
+from drywall_lab.nlu.bilstm_crf import CHAR_KERNEL_SIZE, BiLstmCrfTagger, _forward_backward, _kbest, crf_confidence
 
 MEMBER_DIR = "member{}"
+#: A batch of at most this many words (all sentences together) runs on one intra-op thread (module docstring,
+#: "Speed"); 0 turns that off. Larger batches keep torch's thread setting.
+SINGLE_THREAD_WORDS = 64
 
 
 def members_history(members: Sequence[BiLstmCrfTagger]) -> pd.DataFrame:
     """An ensemble's training history: its members' epochs one after the other, a ``member`` column saying whose."""
     return pd.concat([m.history.assign(member=i) for i, m in enumerate(members)], ignore_index=True)
+
+
+@contextmanager
+def _intra_op_threads(n_words: int) -> Iterator[None]:
+    """Run a batch of at most ``SINGLE_THREAD_WORDS`` words on one intra-op thread; torch's setting is restored after
+    (module docstring, "Speed")."""
+    before = torch.get_num_threads()
+    if before <= 1 or n_words > SINGLE_THREAD_WORDS:
+        yield
+        return
+    torch.set_num_threads(1)
+    try:
+        yield
+    finally:
+        torch.set_num_threads(before)
+
+
+def _read_alike(members: Sequence[BiLstmCrfTagger]) -> bool:
+    """Whether the members turn words into the same ids and vectors of the same widths (so ``_FusedMembers`` can run
+    them as one): the same vocabulary, characters, id handling, embedding and character widths."""
+    def reading(m: BiLstmCrfTagger) -> tuple:
+        return (m.vocabulary, m.characters, m.id_prefix_digits, m.embedding_dim, m.char_embedding_dim, m.char_filters)
+
+    return all(reading(m) == reading(members[0]) for m in members[1:])
+
+
+def _viterbi(e: np.ndarray, lengths: np.ndarray, start: np.ndarray, end: np.ndarray,
+             trans: np.ndarray) -> list[list[int]]:
+    """``torchcrf.CRF.decode`` in NumPy: the same float32 additions in the same order, ties to the first index.
+
+    ``e``: float32 emissions (batch, time, tags); ``lengths``: words per row (at least 1); the CRF's scores in float32.
+    """
+    batch, time, _ = e.shape
+    shortest = int(lengths.min())
+    score = start + e[:, 0]
+    history = []
+    for t in range(1, time):
+        candidates = score[:, :, None] + trans
+        candidates += e[:, t, None, :]
+        history.append(candidates.argmax(axis=1))
+        best = candidates.max(axis=1)
+        score = best if t < shortest else np.where((t < lengths)[:, None], best, score)
+    score = score + end
+    paths = []
+    for b in range(batch):
+        tag = int(score[b].argmax())
+        path = [tag]
+        for t in range(int(lengths[b]) - 1, 0, -1):
+            tag = int(history[t - 1][b, tag])
+            path.append(tag)
+        paths.append(path[::-1])
+    return paths
+
+
+class _FusedMembers:
+    """The members' networks (in evaluation mode) run as one computation, for members that read their input alike.
+
+    The words and characters of a batch are looked up once, in the members' embedding tables concatenated into
+    one (one table for words, one for characters); the members' LSTMs read one packed batch, each its own columns
+    of it. Each member's character convolution, LSTM and linear layer still does its own arithmetic on its own
+    numbers, so the mean emissions are those of the members run one by one, bit for bit (a grouped convolution or
+    one matrix over all members' LSTM outputs would be a few microseconds faster, but sums in another order).
+    Built from the members' weights as they are: ``CrfEnsembleTagger`` rebuilds it when it combines or moves them.
+    """
+
+    def __init__(self, members: Sequence[BiLstmCrfTagger], device: str) -> None:
+        self.first = members[0]
+        self.networks = [m.network for m in members]
+        self.n = len(members)
+        self.width = self.first.embedding_dim + self.first.char_filters  # what each LSTM reads per word
+        self.char_dim = self.first.char_embedding_dim
+        with torch.no_grad():
+            self.word_table = torch.cat([n.embedding.weight for n in self.networks], dim=1).to(device)
+            self.char_table = (torch.cat([n.char_cnn.embedding.weight for n in self.networks], dim=1).to(device)
+                               if self.first.uses_characters else None)
+        self.device = device
+
+    def inputs(self, sentences: Sequence[Sequence[str]]) -> tuple[torch.Tensor, list[int], torch.Tensor | None]:
+        """(word ids (batch, time), lengths, character ids (batch * time, chars) or None) of non-empty word lists,
+        as the members' ``_batch`` and ``_char_batch`` make them."""
+        first = self.first
+        lengths = [len(s) for s in sentences]
+        time = max(lengths)
+        words = torch.tensor([first.word_ids(s) + [0] * (time - len(s)) for s in sentences], dtype=torch.long)
+        chars = None
+        if first.uses_characters:
+            char_lists = [first.char_ids(s) for s in sentences]
+            width = max(len(c) for ids in char_lists for c in ids) or 1
+            rows = []
+            for ids in char_lists:
+                rows.extend(c + [0] * (width - len(c)) for c in ids)
+                rows.extend([[0] * width] * (time - len(ids)))
+            chars = torch.tensor(rows, dtype=torch.long)
+        if self.device != "cpu":
+            words = words.to(self.device)
+            chars = chars.to(self.device) if chars is not None else None
+        return words, lengths, chars
+
+    def emissions(self, words: torch.Tensor, lengths: list[int], chars: torch.Tensor | None) -> torch.Tensor:
+        """The members' mean emissions (batch, time, tags): ``BiLstmCrfNetwork.emissions`` of each in evaluation
+        mode, stacked and averaged."""
+        nets = self.networks
+        for net in nets:
+            if net.training:
+                net.eval()
+        batch, time = words.shape
+        n = self.n
+        x = F.embedding(words, self.word_table).view(batch, time, n, -1)
+        if chars is not None:
+            present = chars != 0
+            embedded = F.embedding(chars, self.char_table)  # (words, chars, member * char_dim)
+            d = self.char_dim
+            h = torch.cat([F.conv1d(embedded[:, :, m * d : (m + 1) * d].transpose(1, 2), net.char_cnn.conv.weight,
+                                    net.char_cnn.conv.bias, padding=CHAR_KERNEL_SIZE // 2)
+                           for m, net in enumerate(nets)], dim=1)
+            pooled = h.masked_fill(~present[:, None, :], float("-inf")).max(dim=2).values
+            pooled = torch.where(present.any(dim=1, keepdim=True), pooled, torch.zeros_like(pooled))
+            x = torch.cat([x, pooled.view(batch, time, n, -1)], dim=3)  # (batch, time, member, width)
+        if min(lengths) == time:  # nothing to pack
+            outs = [net.lstm(x[:, :, m].contiguous())[0] for m, net in enumerate(nets)]
+        else:
+            packed = pack_padded_sequence(x.reshape(batch, time, n * self.width), torch.tensor(lengths),
+                                          batch_first=True, enforce_sorted=False)
+            data = packed.data.view(-1, n, self.width)
+            outs = [
+                pad_packed_sequence(
+                    net.lstm(PackedSequence(data[:, m].contiguous(), *packed[1:]))[0], batch_first=True,
+                    total_length=time,
+                )[0]
+                for m, net in enumerate(nets)
+            ]
+        return torch.stack([net.tag_scores(out) for out, net in zip(outs, nets)]).mean(dim=0)
 
 
 class CrfEnsembleTagger(Tagger):
@@ -87,6 +243,9 @@ class CrfEnsembleTagger(Tagger):
         self.n_members = len(members) or int(n_members)
         self.member_settings = dict(member_settings or {})
         self._crf: CRF | None = None
+        self._fused: _FusedMembers | None = None
+        self._scores64: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+        self._scores32: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         if members:
             self._combine()
 
@@ -102,26 +261,82 @@ class CrfEnsembleTagger(Tagger):
 
     # -- the averaged CRF -----------------------------------------------------------------------
     def _combine(self) -> None:
-        """The CRF whose start, end and transition scores are the members' means."""
+        """The CRF whose start, end and transition scores are the members' means (and the fast path's parts)."""
         crf = CRF(len(self.labels), batch_first=True)
         with torch.no_grad():
             for name in ("start_transitions", "end_transitions", "transitions"):
                 mean = torch.stack([getattr(m.network.crf, name).detach().cpu() for m in self.members]).mean(dim=0)
                 getattr(crf, name).copy_(mean)
         self._crf = crf.to(self.device)
+        self._prepare(self.device)
 
+    def _prepare(self, device: str) -> None:
+        """What prediction reuses from call to call: the averaged CRF's scores as NumPy arrays (float32 for the
+        Viterbi path, float64 for the marginals and k best, as ``crf_confidence`` makes them) and the fused members."""
+        scores = [getattr(self._crf, name).detach().cpu() for name in ("start_transitions", "end_transitions",
+                                                                        "transitions")]
+        self._scores32 = tuple(x.numpy().copy() for x in scores)
+        self._scores64 = tuple(x.double().numpy() for x in scores)
+        self._fused = _FusedMembers(self.members, device) if _read_alike(self.members) else None
+
+    # -- the members one by one: the straightforward computation (the fast path's reference) ----------------------
     def _batches(self, sentences: Sentences, batch_size: int):
-        """(indices, mean emissions, mask) for batches of the non-empty word lists."""
+        """(indices, mean emissions, mask) for batches of the non-empty word lists, each member run on its own."""
         todo = [i for i, words in enumerate(sentences) if words]
         step = max(1, batch_size)
         for member in self.members:
             member.network.eval()
         for start in range(0, len(todo), step):
             index = todo[start : start + step]
+            yield index, *self._reference_emissions([sentences[i] for i in index])
+
+    def _reference_emissions(self, batch: Sequence[Sequence[str]]) -> tuple[torch.Tensor, torch.Tensor]:
+        """(mean emissions, mask) of non-empty word lists: every member's own ``_emissions``, stacked and averaged."""
+        parts = [member._emissions(batch) for member in self.members]
+        emissions = torch.stack([e.to(self.device) for e, _ in parts]).mean(dim=0)
+        return emissions, parts[0][1].to(self.device)
+
+    def _reference_predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
+        """``predict`` member by member, decoded by ``torchcrf``."""
+        sentences = check_sentences(sentences)
+        self._check_trained("predict")
+        out: list[list[str]] = [[] for _ in sentences]
+        with torch.inference_mode():
+            for index, emissions, mask in self._batches(sentences, batch_size):
+                for i, path in zip(index, self._crf.decode(emissions, mask=mask)):
+                    out[i] = [self.labels[t] for t in path]
+        return out
+
+    def _reference_confidence(self, sentences: Sentences, k: int = 5, batch_size: int = 64) -> list[TagConfidence]:
+        """``predict_confidence`` member by member, through ``crf_confidence``."""
+        k = check_k(k)
+        sentences = check_sentences(sentences)
+        self._check_trained("predict_confidence")
+        out = [TagConfidence([], np.zeros((0, len(self.labels))), [([], 0.0)]) for _ in sentences]
+        with torch.inference_mode():
+            for index, emissions, mask in self._batches(sentences, batch_size):
+                marginals, kbest = crf_confidence(self._crf, emissions, mask, k)
+                for row, i in enumerate(index):
+                    out[i] = TagConfidence(
+                        [self.labels[t] for t in kbest[row][0][0]],
+                        marginals[row, : len(sentences[i])],
+                        [([self.labels[t] for t in path], log_p) for path, log_p in kbest[row]],
+                    )
+        return out
+
+    # -- the members as one (the fast path) ----------------------------------------------------------------------
+    def _fast_batches(self, sentences: Sentences, batch_size: int):
+        """(indices, mean emissions as float32 NumPy (batch, time, tags), lengths) for batches of the non-empty word
+        lists, from the fused members; each batch is computed inside ``_intra_op_threads``."""
+        todo = [i for i, words in enumerate(sentences) if words]
+        step = max(1, batch_size)
+        for start in range(0, len(todo), step):
+            index = todo[start : start + step]
             batch = [sentences[i] for i in index]
-            parts = [member._emissions(batch) for member in self.members]
-            emissions = torch.stack([e.to(self.device) for e, _ in parts]).mean(dim=0)
-            yield index, emissions, parts[0][1].to(self.device)
+            with _intra_op_threads(sum(map(len, batch))), torch.inference_mode():
+                words, lengths, chars = self._fused.inputs(batch)
+                emissions = self._fused.emissions(words, lengths, chars).cpu().numpy()
+            yield index, emissions, np.array(lengths)
 
     # -- the Tagger interface ---------------------------------------------------------------------
     def settings(self) -> dict[str, Any]:
@@ -146,6 +361,7 @@ class CrfEnsembleTagger(Tagger):
             member.to(device)
         if self._crf is not None:
             self._crf.to(device)
+            self._prepare(device)
 
     def fit(
         self,
@@ -174,13 +390,14 @@ class CrfEnsembleTagger(Tagger):
 
     def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
         """The Viterbi tags of the averaged CRF."""
+        if self._fused is None:
+            return self._reference_predict(sentences, batch_size)
         sentences = check_sentences(sentences)
         self._check_trained("predict")
         out: list[list[str]] = [[] for _ in sentences]
-        with torch.inference_mode():
-            for index, emissions, mask in self._batches(sentences, batch_size):
-                for i, path in zip(index, self._crf.decode(emissions, mask=mask)):
-                    out[i] = [self.labels[t] for t in path]
+        for index, emissions, lengths in self._fast_batches(sentences, batch_size):
+            for i, path in zip(index, _viterbi(emissions, lengths, *self._scores32)):
+                out[i] = [self.labels[t] for t in path]
         return out
 
     def predict_marginals(self, sentences: Sentences, batch_size: int = 64) -> list[np.ndarray]:
@@ -191,19 +408,24 @@ class CrfEnsembleTagger(Tagger):
 
     def predict_confidence(self, sentences: Sentences, k: int = 5, batch_size: int = 64) -> list[TagConfidence]:
         """Viterbi tags, forward-backward marginals and the k best sequences of the averaged CRF."""
+        if self._fused is None:
+            return self._reference_confidence(sentences, k, batch_size)
         k = check_k(k)
         sentences = check_sentences(sentences)
         self._check_trained("predict_confidence")
         out = [TagConfidence([], np.zeros((0, len(self.labels))), [([], 0.0)]) for _ in sentences]
-        with torch.inference_mode():
-            for index, emissions, mask in self._batches(sentences, batch_size):
-                marginals, kbest = crf_confidence(self._crf, emissions, mask, k)
-                for row, i in enumerate(index):
-                    out[i] = TagConfidence(
-                        [self.labels[t] for t in kbest[row][0][0]],
-                        marginals[row, : len(sentences[i])],
-                        [([self.labels[t] for t in path], log_p) for path, log_p in kbest[row]],
-                    )
+        for index, emissions, lengths in self._fast_batches(sentences, batch_size):
+            e = emissions.astype(np.float64)
+            mask = np.arange(e.shape[1])[None, :] < lengths[:, None]
+            with torch.inference_mode():  # the k best's many small torch.topk calls skip autograd's bookkeeping
+                marginals, log_z = _forward_backward(e, mask, *self._scores64)
+                kbest = _kbest(e, mask, *self._scores64, k, log_z)
+            for row, i in enumerate(index):
+                out[i] = TagConfidence(
+                    [self.labels[t] for t in kbest[row][0][0]],
+                    marginals[row, : len(sentences[i])],
+                    [([self.labels[t] for t in path], log_p) for path, log_p in kbest[row]],
+                )
         return out
 
     # -- saving and loading ----------------------------------------------------------------------

@@ -372,6 +372,14 @@ def crf_kbest(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, k: int) -> 
     return crf_confidence(crf, emissions, mask, k)[1]
 
 
+def fill_confidence(out: list[TagConfidence], index: Sequence[int], sentences: Sequence[Sequence[str]],
+                    labels: Sequence[str], marginals: np.ndarray, kbest: list[list[tuple[list[int], float]]]) -> None:
+    """Put each batch row's ``TagConfidence`` (best tags, marginals cut to its words, k best) at ``out[index[row]]``."""
+    for row, i in enumerate(index):
+        out[i] = TagConfidence([labels[t] for t in kbest[row][0][0]], marginals[row, : len(sentences[i])],
+                               [([labels[t] for t in path], log_p) for path, log_p in kbest[row]])
+
+
 def crf_confidence(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor,
                    k: int) -> tuple[np.ndarray, list[list[tuple[list[int], float]]]]:
     """(marginals, k best) from one forward-backward: what ``predict_confidence`` needs."""
@@ -716,12 +724,7 @@ class BiLstmCrfTagger(Tagger):
         with torch.inference_mode():
             for index, emissions, mask in self._batches(sentences, batch_size):
                 marginals, kbest = crf_confidence(self.network.crf, emissions, mask, k)
-                for row, i in enumerate(index):
-                    out[i] = TagConfidence(
-                        [self.labels[t] for t in kbest[row][0][0]],
-                        marginals[row, : len(sentences[i])],
-                        [([self.labels[t] for t in path], log_p) for path, log_p in kbest[row]],
-                    )
+                fill_confidence(out, index, sentences, self.labels, marginals, kbest)
         return out
 
     # -- saving and loading ----------------------------------------------------------------------

@@ -62,7 +62,8 @@ from drywall_lab.nlu.base import (
     load_tagger,
     resolve_device,
 )
-from drywall_lab.nlu.bilstm_crf import CHAR_KERNEL_SIZE, BiLstmCrfTagger, _forward_backward, _kbest, crf_confidence
+from drywall_lab.nlu.bilstm_crf import (CHAR_KERNEL_SIZE, BiLstmCrfTagger, _forward_backward, _kbest, crf_confidence,
+                                         fill_confidence)
 
 MEMBER_DIR = "member{}"
 #: A batch of at most this many words (all sentences together) runs on one intra-op thread (module docstring,
@@ -316,12 +317,7 @@ class CrfEnsembleTagger(Tagger):
         with torch.inference_mode():
             for index, emissions, mask in self._batches(sentences, batch_size):
                 marginals, kbest = crf_confidence(self._crf, emissions, mask, k)
-                for row, i in enumerate(index):
-                    out[i] = TagConfidence(
-                        [self.labels[t] for t in kbest[row][0][0]],
-                        marginals[row, : len(sentences[i])],
-                        [([self.labels[t] for t in path], log_p) for path, log_p in kbest[row]],
-                    )
+                fill_confidence(out, index, sentences, self.labels, marginals, kbest)
         return out
 
     # -- the members as one (the fast path) ----------------------------------------------------------------------
@@ -420,12 +416,7 @@ class CrfEnsembleTagger(Tagger):
             with torch.inference_mode():  # the k best's many small torch.topk calls skip autograd's bookkeeping
                 marginals, log_z = _forward_backward(e, mask, *self._scores64)
                 kbest = _kbest(e, mask, *self._scores64, k, log_z)
-            for row, i in enumerate(index):
-                out[i] = TagConfidence(
-                    [self.labels[t] for t in kbest[row][0][0]],
-                    marginals[row, : len(sentences[i])],
-                    [([self.labels[t] for t in path], log_p) for path, log_p in kbest[row]],
-                )
+            fill_confidence(out, index, sentences, self.labels, marginals, kbest)
         return out
 
     # -- saving and loading ----------------------------------------------------------------------

@@ -3,7 +3,7 @@
     python annotation_guidelines/check_examples.py [--corpus-dir DIR]
 
 Every code span of README.md that holds a ``word/TAG`` is an example. It must occur in
-data/corpus (any split) or in the committed splits of the field corpus (data/field_corpus) as consecutive words with exactly those tags, a word without ``/TAG``
+data/corpus (any split) or in the field corpus (data/field_corpus: its committed splits and its seeded training split) as consecutive words with exactly those tags, a word without ``/TAG``
 being ``O``; ``...`` in a span skips words. Examples in section 5 are checked against the
 co-reference tags. A six-digit id matches any id of the same kind (5001xx or 5003xx) unless it
 is one that does not exist on the site (an unknown id must match itself). Examples marked wrong
@@ -78,7 +78,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--corpus-dir", default=None)
     args = parser.parse_args(argv)
     rows = [r for split in read_corpus(args.corpus_dir).values() for r in split]
-    rows += [r for split in COMMITTED_SPLITS for r in field_split(split)]
+    rows += [r for split in (*COMMITTED_SPLITS, "train") for r in field_split(split)]
     missing = checked = 0
     for line_no, span, coref, phrase_bank in examples(README.read_text(encoding="utf-8")):
         checked += 1

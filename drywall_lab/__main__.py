@@ -268,6 +268,14 @@ def _cmd_chat(args: argparse.Namespace) -> int:
     return run_chat(Dialogue(load_tagger_option(args.tagger)), input, sys.stdout)
 
 
+def _cmd_dialogue(args: argparse.Namespace) -> int:
+    """The dialogue contract: JSON requests on stdin, one JSON reply each on stdout (the spec's dialogue.md)."""
+    from drywall_lab.dialogue import Dialogue, serve
+    from drywall_lab.pipeline import load_tagger_option
+
+    return serve(Dialogue(load_tagger_option(args.tagger)), sys.stdin, sys.stdout)
+
+
 def _cmd_experiment(args: argparse.Namespace) -> int:
     """The paper's NLU study (Tables 3-5, Fig. 13) on this corpus, or the field ablation (issue 11)."""
     if args.study == "field":
@@ -345,6 +353,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--html", default=None,
                    help="write one self-contained HTML animation of all the episodes here (plays offline)")
     p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser("dialogue", help="the dialogue contract: JSON requests (new, say, choose) on stdin, one JSON "
+                                        "reply each on stdout; a question carries the commands it weighs as options")
+    p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped tagger, an ensemble of two BiLSTM-CRFs)")
+    p.set_defaults(func=_cmd_dialogue)
 
     p = sub.add_parser("chat", help="talk to the robot: an instruction, its command or question, your answer")
     p.add_argument("--tagger", default=None, help="a saved tagger's directory (default: the shipped tagger, an ensemble of two BiLSTM-CRFs)")

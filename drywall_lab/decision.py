@@ -7,49 +7,34 @@ each word's tag probabilities (``Tagger.predict_confidence``); every reading goe
 information-mapping rules against the site and the action history, and then:
 
 1. **One command, and sure of it**: the best reading gives a command, no other reading within the
-   margin gives another command, the readings that give it carry at least ``act`` of the probability,
-   and no word it depends on is doubtful (changing a doubtful word's tag to its second choice, or all
-   the doubtful words' together, does not change the outcome). The robot acts.
-   Three checks of the best reading against its own words come first; gold tags never meet any (tested on every
-   generated split and on ``data/field``'s hand-written tags):
+   margin gives another command, and the readings that give it carry at least ``act`` of the probability.
+   The robot acts. A check of the best reading against its own words comes first; gold tags never meet it (tested
+   on every generated split and on ``data/field``'s hand-written tags):
 
    - **Two panels or two studs** (``two_meanings``): the IM takes the first target rule that applies ("the 2x8"
      before "a full one"), but when another rule that applies on its own names another panel (or stud), the
      words allow two commands: the robot asks, naming both.
-   - **A placement no word says** (``placement_unsaid``): a reading that puts the panel on the centre line
-     (``Vr_md``) although none of the words so tagged says centre ("the left line" with ``line`` tagged ``Vr_md``),
-     or in a row that none of its words names ("again" tagged ``Hr_top``), is asked about, naming both placements:
-     every placement phrase of the guidelines has a centre or row word (``words.says_placement``).
-   - **Lying, read as upright** (``lying_unread``): a reading with no placement tag puts the panel upright on the
-     stud's left line (the default), but a word says it lies ("the 4 by 6 lying down at 500100", with the row words
-     missed). The robot asks, naming the word, instead of standing the panel up. Not when a word takes something
-     back or denies it ("not sideways"; ``words.lying_words``).
 
-   The other readings within the margin must say their placement too: one whose placement tag sits on words that
-   cannot say it ("lol" tagged ``Hr_btm``; ``placement_words_say_it``) is no reading of these words, so it is no
-   rival and asks nothing. Nor is one whose own words name two panels or studs, one of them the best reading's
-   command ("Unit two, a full sheet on 500103" with "two" read as a width): it is torn between that command and another,
-   which is no reading against the command (``two_meanings``). Nor one that reads only what a change of mind in the
-   best reading took back ("the right stack. Scratch that, the left stack" read with "right"; guidelines 4.7:
-   ``reads_what_was_taken_back``), nor, when the best reading's placement agrees with the words, one whose placement
-   goes against a word that says how the panel goes ("lying down" read upright; ``placement_contradicted``), nor one
-   that leaves untagged the row phrase the best reading takes its row from ("top row", "bottom-row";
-   ``leaves_out_a_row_phrase``).
+   A rival within the margin whose own words name two panels or studs, one of them the best reading's command
+   ("Unit two, a full sheet on 500103" with "two" read as a width), is torn between that command and another, which
+   is no reading against the command (``two_meanings``); nor, when the best reading's placement agrees with the
+   words, is one whose placement goes against a word that says how the panel goes (a row although "stands" is said;
+   ``placement_contradicted``).
 2. **A second reading would be safer**: the best reading is ``undetermined`` (a missed tag), and
    readings within the margin give exactly one command, with at least ``recover`` of the probability:
    the robot takes that reading (the most probable one that is determined and feasible on the site), provided it
-   passes the three checks of step 1 (otherwise it asks, as step 1 would).
+   passes the check of step 1 (otherwise it asks, as step 1 would).
 3. **Otherwise, ask** (refusal reason ``unclear``): two commands within the margin, or a command that
    is not sure enough. The message says what was understood and asks one question ("Did you mean
    panel 500321 on stud 500104 on its centre line, or on its left line?"). History and site untouched.
 4. A reading that the site refuses (overlap, buried panel, ...) is refused with the IM's own message
    unless a feasible reading within the margin is likely enough to be worth a question. When the refused reading's
-   placement goes against a word that says how the panel goes (no row although "laid" is said, a row although
-   "stands" is; ``placement_contradicted``) and the one command within the margin comes from a reading that differs
-   from it only in the placement tags and agrees with that word, the robot takes that reading as in step 2 (same
-   ``recover`` probability, same word checks). So too when the best reading is a command whose placement goes
-   against such a word ("the 4x6 lies along the floor from 500102", row words missed): rather than ask, the
-   robot takes the reading that says it lies, if it is the only command the readings that agree with the words give.
+   placement goes against a word that says how the panel goes (a row although "stands" is said;
+   ``placement_contradicted``) and the one command within the margin comes from a reading that differs from it only
+   in the placement tags and agrees with that word, the robot takes that reading as in step 2 (same ``recover``
+   probability, same word check). So too when the best reading is a command whose placement goes against such a word
+   ("keep the top clear , the 4x6 stands on 500102" with "top" read as the top row): rather than ask, the robot takes
+   the reading that stands the panel up, if it is the only command the readings that agree with the words give.
 
 5. **Nothing rests on an unanswered question** (``pending``, in an episode): after the robot asked about an
    instruction (``unclear``) and before it next acts, a command that would be another one had the robot carried
@@ -58,9 +43,7 @@ information-mapping rules against the site and the action history, and then:
    the worker may well have meant the instruction the robot did not carry out. The command asked about is carried
    out in thought where the robot asked, before the commands acted on since (``had_it_been_done``: "the previous
    stud" is still the last one the robot used). One that would make this instruction impossible is no reason to
-   ask when another command asked about leaves it as it is: the worker's words fit that one. A refused instruction
-   that would have been a command had the robot carried out what it asked about ("the stack right of the one you
-   just used", with nothing installed yet) stays open too, with that command (``would_have_been``).
+   ask when another command asked about leaves it as it is: the worker's words fit that one.
 
    - ``half="said"``: an instruction refused as ``undetermined`` although it said something of the part the rules
      could not resolve ("a four by eight three studs to the left of that one", with "that one" missed) is half
@@ -69,8 +52,7 @@ information-mapping rules against the site and the action history, and then:
      fits, or every panel on top of a stack for the stud it names), and a command that any of them would change
      is asked about. A part counts as said when the best reading or a rival within the margin tags a word for it
      ("two right of the one you just used", read as a stack's position by the best reading and as the stud's by a
-     rival, said something of the stud); a panel size in the words ("four by eight", ``words.says_a_size``) says
-     the panel whatever its tags. Only a changed *command* counts here (a completion on a stud the command would overlap says
+     rival, said something of the stud). Only a changed *command* counts here (a completion on a stud the command would overlap says
      nothing). An instruction that said nothing of the missing part ("put any sheet on 500104"), and a site
      refusal (overlap, buried panel), are definite answers: "previous" is then the last accepted command, as spec
      section 3 says. With gold tags the layer still gives every intended outcome on every generated split
@@ -99,7 +81,6 @@ import numpy as np
 from drywall_lab.corpus.tags import DESTINATION_TAGS, PLACEMENT_TAGS, TARGET_TAGS
 from drywall_lab.errors import Refusal
 from drywall_lab.im import ActionHistory, Interpretation, RobotCommand, Trace
-from drywall_lab.im.correction import NEGATIONS, PARTS
 from drywall_lab.im import interpret as im_interpret
 from drywall_lab.im import words as W
 from drywall_lab.im.context import MappingContext
@@ -121,19 +102,17 @@ class DecisionSettings:
 
     ``k``: tag sequences read; ``margin``: natural-log probability below the best within which a reading
     counts as a rival; ``act``: the probability the readings of a command must carry to act on it;
-    ``recover``: the same when the best reading was undetermined; ``doubt``: a word is doubtful when its
-    tag's probability is below ``1 - doubt``; ``question``: the probability of a feasible reading that
+    ``recover``: the same when the best reading was undetermined; ``question``: the probability of a feasible reading that
     turns a site refusal into a question; ``pending``: in an episode, after a step not understood, ask before
     acting on a command that step would change (module docstring, step 5); ``half``: which ``undetermined``
     refusals count as not understood (``HALF_UNDERSTOOD``); ``through``: whether a question stays open after the
-    robot acts on something else; ``word_checks``: the readings checked against their own words (step 1).
+    robot acts on something else; ``word_checks``: the readings checked against their own words (steps 1 and 4).
     """
 
     k: int = 8
     margin: float = 3.0
     act: float = 0.5
     recover: float = 0.3
-    doubt: float = 0.2
     question: float = 0.2
     pending: bool = True
     half: str = "off"
@@ -143,7 +122,7 @@ class DecisionSettings:
     def __post_init__(self) -> None:
         if self.k < 1:
             raise ValueError(f"k must be at least 1, got {self.k}")
-        for name in ("act", "recover", "doubt", "question"):
+        for name in ("act", "recover", "question"):
             value = getattr(self, name)
             if not 0 <= value <= 1:
                 raise ValueError(f"{name} must be between 0 and 1, got {value}")
@@ -154,14 +133,12 @@ class DecisionSettings:
 
 
 #: Acting on the single best reading, as the paper does: the layer switched off.
-BEST_PATH = DecisionSettings(k=1, margin=0.0, act=0.0, recover=1.0, doubt=1.0, question=1.0, pending=False,
-                             word_checks=False)
+BEST_PATH = DecisionSettings(k=1, margin=0.0, act=0.0, recover=1.0, question=1.0, pending=False, word_checks=False)
 #: The thresholds ``benchmarks/decision.py`` chose on the field corpus's validation and novel splits for the shipped
 #: recipe (an ensemble of two seed models), by the mean cost over the three ensembles of two of the seed models 0-2
-#: (``benchmarks/results/decision.md``; a test checks that they are the recorded choice). Its rule gave
-#: ``doubt=1.0``: the doubtful-word check did not lower the cost there, so it is off by default.
-DEFAULT_SETTINGS = DecisionSettings(k=8, margin=2.0, act=0.3, recover=0.05, doubt=1.0, question=0.2, pending=True,
-                                    half="said", through=True)
+#: (``benchmarks/results/decision.md``; a test checks that they are the recorded choice).
+DEFAULT_SETTINGS = DecisionSettings(k=8, margin=1.5, act=0.0, recover=0.05, question=0.2, pending=True, half="said",
+                                    through=True)
 
 
 # --- readings --------------------------------------------------------------------------------------------
@@ -189,8 +166,8 @@ class Reading:
 
     @property
     def read_tags(self) -> list[str]:
-        """The tags as the rules read them: a word of punctuation only, a stud spacing, or a word a change of mind took
-        back, is ``O`` (``TaggedInstruction``); the checks of a reading against its own words look at these."""
+        """The tags as the rules read them: a place in a stack, or a word a change of mind took back, is ``O``
+        (``TaggedInstruction``); the checks of a reading against its own words look at these."""
         return self.interpretation.tags
 
     @property
@@ -261,26 +238,8 @@ def question_between(first: Outcome, second: Outcome) -> str:
     return f"Did you mean {_describe(first)}, or {_describe(second)}?"
 
 
-def _doubtful_words(words: Sequence[str], marginals: np.ndarray, labels: Sequence[str], tags: Sequence[str],
-                    doubt: float) -> list[tuple[int, str]]:
-    """(index, second-choice tag) for every word whose chosen tag has probability below ``1 - doubt``."""
-    if marginals.size == 0:
-        return []
-    index = {label: i for i, label in enumerate(labels)}
-    out = []
-    for i, tag in enumerate(tags):
-        row = marginals[i]
-        if row[index[tag]] < 1 - doubt:
-            order = np.argsort(-row)
-            second = next(labels[j] for j in order if labels[j] != tag)
-            out.append((i, second))
-    return out
-
-
-def _confirm(outcome: Outcome, words: Sequence[str], doubtful: list[int]) -> str:
-    unsure = ", ".join(f"'{words[i]}'" for i in doubtful[:3])
-    unsure_text = f" I am not sure what {unsure} means here." if unsure else " I am not sure I understood."
-    return f"I understood {_describe(outcome)}.{unsure_text} Is that right?"
+def _confirm(outcome: Outcome) -> str:
+    return f"I understood {_describe(outcome)}. I am not sure I understood. Is that right?"
 
 
 def _mass(readings: Iterable[Reading]) -> dict[Outcome, float]:
@@ -338,94 +297,16 @@ def two_meanings(outcome: Outcome, words: Sequence[str], tags: Sequence[str],
         other = list(outcome)
         other[index] = others[0]
         options = [outcome] + ([tuple(other)] if _feasible(history, tuple(other)) else [])
-        question = question_between(*options) if len(options) > 1 else _confirm(outcome, words, [])
+        question = question_between(*options) if len(options) > 1 else _confirm(outcome)
         rules_text = " and ".join(f"{name} ({value})" for name, value in found.items())
         return f"the words name two {what}: {rules_text}", question, options
     return None
 
 
-_SAYS = {"Vr_md": "centre", "Hr_top": "top", "Hr_btm": "bottom"}
-
-
-def placement_words_say_it(words: Sequence[str], tags: Sequence[str]) -> bool:
-    """Whether every placement tag of a reading sits on words that can say it (``words.says_placement``): "centre line"
-    for ``Vr_md``, "the bottom row" for ``Hr_btm``; not "the left line" or "lol". Gold tags always do (tested)."""
-    return all(W.says_placement(tag, [w for w, t in zip(words, tags) if t == tag])
-               for tag in PLACEMENT_TAGS if tag in tags)
-
-
-def placement_unsaid(outcome: Outcome, words: Sequence[str], tags: Sequence[str], history: ActionHistory,
-                     interpreter: Callable = im_interpret) -> tuple[str, str, list[Outcome]] | None:
-    """A reading whose placement rests on words that cannot say it ("the left line" with ``line`` tagged ``Vr_md``;
-    "again" tagged ``Hr_top``): why, the question (that placement, or the reading without the tag) and the commands
-    asked about; None when the words say the placement, or there is none."""
-    for tag in PLACEMENT_TAGS:
-        unsaid = [i for i, t in enumerate(tags) if t == tag]
-        if not unsaid or W.says_placement(tag, [words[i] for i in unsaid]):
-            continue
-        plain = outcome_of(interpreter(words, ["O" if t == tag else t for t in tags], history))
-        why = f"the placement rests on {W.quote([words[i] for i in unsaid])}, which does not say {_SAYS[tag]}"
-        if plain[0] == "command" and plain != outcome:
-            return why, question_between(outcome, plain), [outcome, plain]
-        return why, _confirm(outcome, words, unsaid), [outcome]
-    return None
-
-
-def lying_unread(outcome: Outcome, words: Sequence[str], tags: Sequence[str]) -> tuple[str, str, list[Outcome]] | None:
-    """A reading with no placement tag (upright on the left line, the default) although a word says the panel lies
-    ("lying down", "sideways", ``words.lying_words``): why, the question (naming the word) and the command asked about;
-    None otherwise. The guidelines tag the row words of a lying panel, never the lying word itself."""
-    if outcome[0] != "command" or any(tag in PLACEMENT_TAGS for tag in tags):
-        return None
-    lying = W.lying_words(words, tags)
-    if not lying:
-        return None
-    why = f"the panel stands upright by default, but {W.quote([words[i] for i in lying])} says it lies"
-    return why, _confirm(outcome, words, lying), [outcome]
-
-
 def placement_contradicted(words: Sequence[str], tags: Sequence[str]) -> bool:
-    """Whether a reading's placement goes against a word that says how the panel goes: no row tag although a word says
-    it lies ("the 2x8 laid along the floor at 500104", the row words missed), or a row although a word says it stands
-    ("keep the top clear , the 4x6 stands on 500102" with "top" read as the top row)."""
-    rows = {"Hr_top", "Hr_btm"}.intersection(tags)
-    return bool(W.upright_words(words, tags)) if rows else bool(W.lying_words(words, tags))
-
-
-def reads_what_was_taken_back(words: Sequence[str], best: Reading, rival: Reading) -> bool:
-    """Whether a rival reads, for some part (panel, stud, placement), none of the words the best reading reads for it,
-    and only words that a change of mind takes back once both are read together ("the right stack . Scratch that ,
-    the left stack" with "right" tagged and "left" not): it acts on what the worker abandoned, which the guidelines
-    never tag (4.7), so it is no reading of the words."""
-    for part_tags in PARTS.values():
-        theirs = {i for i, t in enumerate(rival.read_tags) if t in part_tags}
-        ours = {i for i, t in enumerate(best.read_tags) if t in part_tags}
-        if not theirs or not ours or theirs & ours:
-            continue
-        both = [rival.read_tags[i] if i in theirs else t for i, t in enumerate(best.tags)]  # read together
-        if theirs <= set(TaggedInstruction(words, both).taken_back):
-            return True
-    return False
-
-
-#: Words that rule out the phrase after them: the IM's negations ("skip", "without", ...) and "except", "but".
-_NEGATING = frozenset(cue[0] for cue in NEGATIONS) | {"except", "but", "instead"}
-
-
-def leaves_out_a_row_phrase(words: Sequence[str], best: Reading, rival: Reading) -> bool:
-    """Whether the best reading takes its row from a row phrase ("top row", "the next bottom-row sheet";
-    ``words.row_phrases``), which the guidelines always tag as the placement, and a rival says no such row (the phrase
-    untagged or read as something else): it reads the words less fully than the best one, so it is no rival. Not
-    when a negation or a take-back word comes just before the phrase ("skip the top row"): the rival may be right."""
-    norm = [W.normalise(w) for w in words]
-    for phrase in W.row_phrases(words):
-        if any(w in W.TAKE_BACK_WORDS or w in _NEGATING for w in norm[max(0, phrase[0] - 3):phrase[0]]):
-            continue  # "skip the top row", "no, not the bottom row": the phrase may be what the worker rules out
-        row = best.read_tags[phrase[0]]
-        if row in ("Hr_top", "Hr_btm") and all(best.read_tags[i] == row for i in phrase):
-            if row not in rival.read_tags:  # the phrase untagged, or read as something else ("bottom-row" as a size)
-                return True
-    return False
+    """Whether a reading's placement goes against a word that says how the panel goes: a row although a word says it
+    stands ("keep the top clear , the 4x6 stands on 500102" with "top" read as the top row)."""
+    return bool({"Hr_top", "Hr_btm"}.intersection(tags)) and bool(W.upright_words(words, tags))
 
 
 def _differs_in_placement_only(tags: Sequence[str], other: Sequence[str]) -> bool:
@@ -439,7 +320,8 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
     """Choose what to do with one instruction from the tagger's readings (module docstring, steps 1-4).
 
     ``kbest``: tag sequences with natural-log probabilities, best first (``Tagger.predict_kbest``);
-    ``marginals``: (n_words, n_labels) tag probabilities in ``labels`` order. Nothing is recorded.
+    ``marginals``: (n_words, n_labels) tag probabilities in ``labels`` order (not read by the steps as they stand;
+    kept so that a ``predict_confidence`` result is passed as it comes). Nothing is recorded.
     ``interpreter(words, tags, history)`` is the IM's ``interpret`` (a cached one when many settings
     are compared on the same readings).
     """
@@ -451,10 +333,7 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
     if not readings:
         raise ValueError("decide needs at least one tag sequence")
     best = readings[0]
-    # A rival must say its placement: "lol" tagged Hr_btm is no reading of the words (step 1).
-    within = [best] + [r for r in readings[1:] if r.logprob >= best.logprob - settings.margin
-                       and (not settings.word_checks or (placement_words_say_it(words, r.read_tags)
-                                                         and not reads_what_was_taken_back(words, best, r)))]
+    within = [best] + [r for r in readings[1:] if r.logprob >= best.logprob - settings.margin]
     mass = _mass(readings)
     rival_commands = list(dict.fromkeys(r.outcome for r in within if r.outcome[0] == "command"))
 
@@ -488,12 +367,10 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         return torn is not None and outcome in torn[2]
 
     def word_checks(reading: Reading) -> tuple[str, str, list[Outcome]] | None:
-        """The three checks of a reading against its own words (step 1), or None when it passes them or they are off."""
+        """The check of a reading against its own words (step 1), or None when it passes it or it is off."""
         if not settings.word_checks:
             return None
-        return (two_meanings(reading.outcome, words, reading.read_tags, history)
-                or placement_unsaid(reading.outcome, words, reading.read_tags, history, interpret)
-                or lying_unread(reading.outcome, words, reading.read_tags))
+        return two_meanings(reading.outcome, words, reading.read_tags, history)
 
     def placed_instead() -> Reading | None:
         """Step 4's reading for a best one whose placement goes against its words: the one command within the margin
@@ -516,8 +393,7 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         sound = settings.word_checks and not contradicted(best)
         others = list(dict.fromkeys(r.outcome for r in within[1:] if r.outcome[0] == "command"
                                     and r.outcome != best.outcome and not torn_towards(r, best.outcome)
-                                    and not (sound and contradicted(r))
-                                    and not (settings.word_checks and leaves_out_a_row_phrase(words, best, r))))
+                                    and not (sound and contradicted(r))))
         if others:
             return finish(best, "ask", "two readings give different commands",
                           Refusal("unclear", question_between(best.outcome, others[0])), [best.outcome, others[0]])
@@ -525,19 +401,9 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         if checked is not None:
             why, question, options = checked
             return finish(best, "ask", why, Refusal("unclear", question), options)
-        doubtful = _doubtful_words(words, marginals, labels, best.tags, settings.doubt)
-        changing: list[int] = []
-        variants = [[(i, second)] for i, second in doubtful] + ([doubtful] if len(doubtful) > 1 else [])
-        for variant in variants:  # each doubtful word on its own, then all of them together
-            tags = list(best.tags)
-            for i, second in variant:
-                tags[i] = second
-            if outcome_of(interpret(words, tags, history)) != best.outcome:
-                changing.extend(i for i, _ in variant if i not in changing)
-        if mass[best.outcome] < settings.act or changing:
-            why = (f"the command's readings carry p={mass[best.outcome]:.3f} < {settings.act}"
-                   if not changing else "a doubtful word changes the outcome")
-            return finish(best, "ask", why, Refusal("unclear", _confirm(best.outcome, words, changing)), [best.outcome])
+        if mass[best.outcome] < settings.act:
+            why = f"the command's readings carry p={mass[best.outcome]:.3f} < {settings.act}"
+            return finish(best, "ask", why, Refusal("unclear", _confirm(best.outcome)), [best.outcome])
         return finish(best, "act", f"one command, p={mass[best.outcome]:.3f}")
 
     reason = best.outcome[1]
@@ -564,7 +430,7 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
                           f"in the placement and says it as the words do gives one command, p={mass[placed.outcome]:.3f}")
         if mass[first] >= settings.question:
             message = best.interpretation.refusal.message if reason != "undetermined" else None
-            question = _confirm(first, words, [])
+            question = _confirm(first)
             text = f"{message} Or did you mean {_describe(first)}?" if message else question
             return finish(chosen, "ask", f"refused ({reason}), but a feasible reading has p={mass[first]:.3f}",
                           Refusal("unclear", text), [first])
@@ -592,7 +458,7 @@ def second_opinion(decision: Decision, check: Interpretation, any_difference: bo
     if other[0] == "command":
         question, options, seen = question_between(own, other), [own, other], f"command {_describe(other)}"
     else:
-        question, options, seen = _confirm(own, decision.words, []), [own], f"refused ({other[1]})"
+        question, options, seen = _confirm(own), [own], f"refused ({other[1]})"
     return ask_instead(decision, question, options, "D second opinion",
                        f"a second tagger's reading gives {seen} (tags: {' '.join(check.tags)}): ask")
 
@@ -658,8 +524,8 @@ def completions(decision: Decision, history: ActionHistory, half: str = "said", 
     try:
         panels = [resolve_target(ti, ctx)]
     except Refusal:
-        if half == "said" and not said & set(TARGET_TAGS) and not W.says_a_size(decision.words):
-            return []  # nothing said about the panel ("any sheet"): nothing to build on; a size missed says it
+        if half == "said" and not said & set(TARGET_TAGS):
+            return []  # nothing said about the panel ("any sheet"): nothing to build on
         panels = [p for p in history.state.tops.values() if p is not None]
     try:
         studs = [resolve_stud(ti, ctx)]
@@ -740,25 +606,6 @@ def not_carried_out(decision: Decision, unanswered: Sequence[tuple[Decision, Seq
     return decision
 
 
-def would_have_been(decision: Decision, unanswered: Sequence[tuple[Decision, Sequence[Outcome], int]],
-                     history: ActionHistory, interpreter: Callable = im_interpret) -> list[Outcome]:
-    """The commands a refused instruction would have given had the robot carried out a command it asked about
-    (``had_it_been_done``): "the stack right of the one you just used", refused because nothing is installed yet,
-    rests on the question as much as a command does, so it stays open with them (step 5)."""
-    if decision.acted:
-        return []
-    meant: list[Outcome] = []
-    for entry in unanswered:
-        for option in entry[1]:
-            other_history = had_it_been_done(history, entry[2], option) if option[0] == "command" else None
-            if other_history is None:
-                continue
-            other = outcome_of(interpreter(decision.words, decision.tags, other_history))
-            if other[0] == "command" and other not in meant:
-                meant.append(other)
-    return meant
-
-
 def play_episode(instructions: Sequence[Sequence[str]], confidences: Sequence, labels: Sequence[str],
                  history: ActionHistory, settings: DecisionSettings = DEFAULT_SETTINGS,
                  interpreter: Callable = im_interpret, checks: Sequence[Interpretation | None] | None = None,
@@ -784,8 +631,6 @@ def play_episode(instructions: Sequence[Sequence[str]], confidences: Sequence, l
             unanswered.append((decision, decision.options, len(history)))
         else:
             meant = completions(decision, history, settings.half, settings.margin)
-            if settings.pending and unanswered:
-                meant += [o for o in would_have_been(decision, unanswered, history, interpreter) if o not in meant]
             if meant:
                 unanswered.append((decision, meant, len(history)))
         decisions.append(decision)

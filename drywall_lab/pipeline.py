@@ -13,8 +13,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Iterable, Iterator, Mapping, Protocol, Sequence
 
-from drywall_lab.corpus.io import read_jsonl
+from drywall_lab.corpus.io import read_jsonl, tokenize
 from drywall_lab.corpus.markup import parse
+from drywall_lab.errors import Refusal
 from drywall_lab.im import ActionHistory, InformationMapper, Interpretation
 from drywall_lab.nlu.normalise import Normalised, normalise
 from drywall_lab.site import DATA_DIR, Site
@@ -99,9 +100,31 @@ def contract_record(episode_id: str | int, step: int, result: Interpretation, sa
     }
 
 
+#: The longest instruction read (words, characters): a longer one is refused before tagging (``run``, ``chat``,
+#: ``dialogue``), so that a pasted page costs neither time nor memory.
+MAX_INSTRUCTION_WORDS = 200
+MAX_INSTRUCTION_CHARS = 2000
+
+
+def too_long(text: str) -> Refusal | None:
+    """The refusal of an instruction too long to be one instruction, or None."""
+    n_words = len(text.split())
+    if n_words > MAX_INSTRUCTION_WORDS or len(text) > MAX_INSTRUCTION_CHARS:
+        return Refusal("undetermined", f"That is {n_words:,} words ({len(text):,} characters): I read one instruction "
+                                       f"of at most {MAX_INSTRUCTION_WORDS} words and {MAX_INSTRUCTION_CHARS:,} "
+                                       "characters. Which panel should I pick, and which stud does it go on?")
+    return None
+
+
 def read_instructions(instructions: Sequence[str]) -> list[Normalised]:
-    """Each instruction read by the front end (``drywall_lab.nlu.normalise``): what the tagger and the IM read."""
-    return [normalise(text) for text in instructions]
+    """Each instruction read by the front end (``drywall_lab.nlu.normalise``): what the tagger and the IM read; an
+    instruction that is ``too_long`` is only split into words, as said (it is refused, never tagged)."""
+    return [_as_said(text) if too_long(text) else normalise(text) for text in instructions]
+
+
+def _as_said(text: str) -> Normalised:
+    words = tuple(tokenize(text))
+    return Normalised(words, words, tuple((i,) for i in range(len(words))), ())
 
 
 def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None,
@@ -120,7 +143,8 @@ def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None,
     from drywall_lab.decision import DEFAULT_SETTINGS, decide_episode
 
     read = read_instructions(episode["instructions"]) if read is None else read
-    words = [list(n.words) for n in read]
+    long = [too_long(text) for text in episode["instructions"]]
+    words = [[] if refusal else list(n.words) for n, refusal in zip(read, long)]  # a refused one is never tagged
     if hasattr(tagger, "predict_confidence"):
         history = ActionHistory(site)
         results = [d.interpretation for d in decide_episode(words, tagger, settings or DEFAULT_SETTINGS, history,
@@ -129,8 +153,10 @@ def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None,
         tags = tagger.predict(words) if words else []
         mapper = InformationMapper(site)
         results = [mapper.apply(w, t) for w, t in zip(words, tags)]
-    for n, result in zip(read, results):
+    for k, (n, result) in enumerate(zip(read, results)):
         result.trace.steps[:0] = n.trace_steps()
+        if long[k] is not None:
+            results[k] = Interpretation(list(n.words), ["O"] * len(n.words), result.trace, None, long[k])
     return results
 
 

@@ -38,3 +38,24 @@ def regenerated_corpus(tmp_path_factory) -> RegeneratedCorpus:
         gc.collect()  # an unclosed file is reported when it is collected
     return RegeneratedCorpus(out_dir=out, exit_code=code, stdout=stdout.getvalue(),
                              resource_warnings=[str(w.message) for w in caught if issubclass(w.category, ResourceWarning)])
+
+
+def load_benchmark(name: str):
+    """A script of ``benchmarks/`` loaded as a module (its folder on the path, as when it runs)."""
+    import importlib.util
+    import sys
+
+    folder = Path(__file__).resolve().parent.parent / "benchmarks"
+    if str(folder) not in sys.path:
+        sys.path.insert(0, str(folder))
+    spec = importlib.util.spec_from_file_location(f"benchmark_{name}", folder / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # its dataclasses look their module up there
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="session")
+def benchmark_script():
+    """``load_benchmark``, for the tests of the benchmark scripts."""
+    return load_benchmark

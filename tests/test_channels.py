@@ -69,3 +69,55 @@ def test_evaluate_reports_the_decision_layer_by_channel(splits):
     for name in met:
         assert table.loc[name, "n"] == sum(name in r["channels"] for r in rows)
     assert (table["acc_decided"] == 1.0).all() and (table["wrong_action_rate"] == 0.0).all()
+
+
+def _sentence(tagged: str) -> list[Token]:
+    return [Token(*(w.split("/") + ["O"])[:2], (w.split("/") + ["O"])[1]) for w in tagged.split()]
+
+
+def _words(out) -> str:
+    return " ".join(t.word for s in out for t in s if t.is_word)
+
+
+def test_relative_talk_says_a_step_as_an_order_along_the_wall_and_the_im_reads_it():
+    """``relative_talk``: "two to the right of 500104" becomes "two past 500104" (or after, beyond, ...), and the IM
+    reads the order words as the direction (``im.words.ORDER_WORDS``): the same stud as before the rewrite."""
+    from drywall_lab.im import ActionHistory, interpret
+
+    sentence = _sentence("put the 2x8/width on the stud two/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of "
+                         "500104/St_loc2 please")
+    rng = Chooser(random.Random(1))
+    said = set()
+    for _ in range(60):
+        out = C.relative_talk(rng, [list(sentence)])
+        words = [t.word for s in out for t in s if t.is_word]
+        tags = [t.tag for s in out for t in s if t.is_word]
+        said.add(_words(out))
+        assert interpret(words, tags, history=ActionHistory()).outcome()["stud_id"] == "500106", words
+    assert any("right" not in s for s in said) and any("right" in s for s in said)  # sometimes left as it was
+
+
+def test_stack_talk_adds_only_o_words_and_keeps_the_outcome():
+    """``stack_talk``: "from the top of the middle pile", "the top 2x8": row words that say which sheet, all ``O``."""
+    sentence = _sentence("grab the 2x8/width sheet from the middle/Dw_loc1 pile and put it on 500104/ID_stud")
+    rng = Chooser(random.Random(2))
+    seen = set()
+    for _ in range(40):
+        out = C.stack_talk(rng, [list(sentence)])
+        added = [t for s in out for t in s if t.is_word and t.word in ("top", "topmost", "uppermost")]
+        assert all(t.tag == "O" for t in added)
+        assert [t.tag for s in out for t in s if t.is_word and t.tag != "O"] == ["width", "Dw_loc1", "ID_stud"]
+        seen.add(_words(out))
+    assert any("top of the middle pile" in s for s in seen) and any("the top 2x8" in s or "topmost 2x8" in s
+                                                                      or "uppermost 2x8" in s for s in seen)
+
+
+def test_asides_are_composed_and_all_o():
+    rng = random.Random(4)
+    remarks = {" ".join(C.aside_words(rng)) for _ in range(300)}
+    assert len(remarks) > 150  # composed, not a short list
+    ch = Chooser(random.Random(5))
+    sentence = _sentence("put the 2x8/width on 500104/ID_stud")
+    for _ in range(30):
+        out = C.asides(ch, [list(sentence), list(sentence)])
+        assert [t.tag for s in out for t in s if t.is_word and t.tag != "O"] == ["width", "ID_stud"] * 2

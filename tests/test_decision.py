@@ -12,8 +12,8 @@ from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, DecisionSettings, completions, decide, decide_episode,
                                   decide_rows, decide_tags, decision_scores, not_carried_out, outcome_of, play_episode,
-                                  lying_unread, placement_unsaid, placement_words_say_it, question_between, risk_coverage, second_opinion, step_outcome,
-                                  placement_contradicted, two_meanings)
+                                  placement_contradicted, question_between, risk_coverage, second_opinion, step_outcome,
+                                  two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
 from drywall_lab.splits import ALL_SPLITS, split_rows
@@ -72,21 +72,6 @@ def test_a_command_with_too_little_probability_is_a_question_saying_what_was_und
     d = decide(words, [(tags, math.log(0.3))], _sure(tags), TAGS, settings=DecisionSettings(act=0.6))
     assert d.refusal.reason == "unclear"
     assert d.refusal.message.startswith("I understood panel 500321 on stud 500104") and d.refusal.message.endswith("?")
-
-
-def test_a_doubtful_word_that_changes_the_command_is_asked_about():
-    words, tags = _wt(CENTRE)
-    doubt = [(t, 1.0, "O") if w not in ("centre", "line") else ("Vr_md", 0.6, "O") for w, t in zip(words, tags)]
-    d = decide(words, [(tags, math.log(0.9))], _marginals(doubt), TAGS, settings=DecisionSettings(act=0.5, doubt=0.3))
-    assert d.action == "ask" and "'centre', 'line'" in d.refusal.message
-    # one doubtful word of the two is no reason to ask: "line" alone still says the centre line
-    doubt = [(t, 1.0, "O") if w != "centre" else ("Vr_md", 0.6, "O") for w, t in zip(words, tags)]
-    d = decide(words, [(tags, math.log(0.9))], _marginals(doubt), TAGS, settings=DecisionSettings(act=0.5, doubt=0.3))
-    assert d.action == "act"
-    # a doubtful word whose second choice changes nothing is no reason to ask
-    doubt = [(t, 1.0, "O") if w != "panel" else ("O", 0.6, "dim") for w, t in zip(words, tags)]
-    d = decide(words, [(tags, math.log(0.9))], _marginals(doubt), TAGS, settings=DecisionSettings(act=0.5, doubt=0.3))
-    assert d.action == "act"
 
 
 def test_an_undetermined_best_reading_recovers_the_one_command_within_the_margin():
@@ -232,68 +217,6 @@ def test_a_command_the_question_does_not_touch_is_acted_on():
     assert not_carried_out(decisions[1], asked, history) is decisions[1]  # not acting: unchanged
 
 
-def test_a_centre_line_no_word_says_is_asked_about():
-    """Step 1: "the left line" with 'line' tagged Vr_md puts the panel on the centre line although no word says
-    centre; the robot asks, naming both placements. With a centre word it acts."""
-    words, tags = _wt("panel 500320/ID_wall on 500107/ID_stud stud , left line/Vr_md of stud")
-    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
-    assert d.action == "ask" and d.refusal.reason == "unclear"
-    assert [o[3] for o in d.options] == ["vertical_middle", "vertical_left"]
-    assert "'line', which does not say centre" in str(d.interpretation.trace)
-    for said in ("centre/Vr_md line/Vr_md", "c-l/Vr_md", "centred/Vr_md"):
-        words, tags = _wt(f"panel 500320/ID_wall on 500107/ID_stud stud , {said}")
-        d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
-        assert d.action == "act" and d.command.placement.value == "vertical_middle", said
-
-
-def test_a_row_no_word_says_is_asked_about():
-    """Step 1: "same again" with 'again' tagged Hr_top puts the panel in the top row although no word names a row;
-    the robot asks, naming both placements. With a row word it acts."""
-    words, tags = _wt("the 4/width by 6/length same again/Hr_top on stud 500100/ID_stud")
-    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
-    assert d.action == "ask" and [o[3] for o in d.options] == ["horizontal_top", "vertical_left"]
-    assert "'again', which does not say top" in str(d.interpretation.trace)
-    words, tags = _wt("the 4/width by 6/length up top/Hr_top on stud 500100/ID_stud")
-    assert placement_unsaid(("command", "500322", "500100", "horizontal_top"), words, tags, ActionHistory()) is None
-    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
-    assert d.action == "act" and d.command.placement.value == "horizontal_top"
-
-
-def test_a_rival_that_does_not_say_its_placement_asks_nothing():
-    """A reading within the margin whose row rests on a word that names no row ("lol" tagged Hr_btm) is no rival:
-    the robot acts on the best reading. A rival whose row word says it ("bottom") still makes it ask."""
-    words, best = _wt("lol ok full/dim sheet on 500104/ID_stud , bottom")
-    _, lol = _wt("lol/Hr_btm ok full/dim sheet on 500104/ID_stud , bottom")
-    _, bottom = _wt("lol ok full/dim sheet on 500104/ID_stud , bottom/Hr_btm")
-    assert placement_words_say_it(words, best) and placement_words_say_it(words, bottom)
-    assert not placement_words_say_it(words, lol)
-    d = decide(words, [(best, math.log(0.6)), (lol, math.log(0.4))], _sure(best), TAGS)
-    assert d.action == "act" and d.command.placement.value == "vertical_left"
-    d = decide(words, [(best, math.log(0.6)), (bottom, math.log(0.4))], _sure(best), TAGS)
-    assert d.action == "ask" and [o[3] for o in d.options] == ["vertical_left", "horizontal_bottom"]
-    off = DecisionSettings(**{**DEFAULT_SETTINGS.__dict__, "word_checks": False})
-    assert decide(words, [(best, math.log(0.6)), (lol, math.log(0.4))], _sure(best), TAGS, settings=off).action == "ask"
-
-
-def test_a_lying_panel_read_as_upright_is_asked_about():
-    """Step 1: "lying down" with the row words missed gives the default, upright on the left line; the robot asks,
-    naming the word. With the row tagged, a take-back or denial, or a word that says upright, it acts."""
-    words, tags = _wt("the 4/width by 6/length lying down at the bottom of stud 500100/ID_stud")
-    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
-    assert d.action == "ask" and d.refusal.reason == "unclear"
-    assert d.options == [("command", "500322", "500100", "vertical_left")]
-    assert "I am not sure what 'lying' means here" in d.refusal.message
-    assert "says it lies" in str(d.interpretation.trace)
-    for said in ("lying down at the bottom/Hr_btm of stud 500100/ID_stud",  # the row read
-                 "on stud 500100/ID_stud , not sideways",  # denied
-                 "sideways no wait on stud 500100/ID_stud",  # taken back
-                 "on stud 500100/ID_stud upright , we did the last wall sideways"):  # upright said too
-        words, tags = _wt(f"the 4/width by 6/length {said}")
-        d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS)
-        assert d.action == "act", said
-    assert lying_unread(("refusal", "undetermined"), *_wt("lay it down somewhere")) is None
-
-
 def test_a_reading_that_names_two_panels_is_asked_about():
     """Step 1: "the 2x8 ... a full one" with both size words tagged: the IM's first rule (width and length) gives the
     2 x 8 panel, the size word the 4 x 8; the robot asks which, naming both. Words that agree are acted on."""
@@ -314,19 +237,13 @@ def test_a_reading_that_names_two_panels_is_asked_about():
 
 @pytest.mark.parametrize("split", ALL_SPLITS)
 def test_gold_tags_never_meet_the_reading_checks(split):
-    """The checks of a reading against its own words (step 1) never fire on gold tags: every Vr_md phrase has a
-    centre word and every row phrase a row word, no gold reading that gives a command names two panels or two
-    studs, and none stands a panel upright that a word says lies."""
-    from drywall_lab.im import words as W
+    """The check of a reading against its own words (step 1) never fires on gold tags: no gold reading that gives a
+    command names two panels or two studs."""
     for row in split_rows(split):
-        centre = [w for w, t in zip(row["words"], row["tags"]) if t == "Vr_md"]
-        assert not centre or W.says_centre_line(centre), (row["id"], centre)
         if row["expected"]["refusal"] is None:
             outcome = ("command", *(row["expected"][k] for k in ("drywall_id", "stud_id", "placement")))
             history = ActionHistory.from_commands(row["context"]["history"])
             assert two_meanings(outcome, row["words"], row["tags"], history) is None, row["id"]
-            assert lying_unread(outcome, row["words"], row["tags"]) is None, row["id"]
-        assert placement_words_say_it(row["words"], row["tags"]), row["id"]
 
 
 HALF = "a four/width by eight/length three/St_loc1 studs to/St_loc1 the/St_loc1 left/St_loc1 of that one"
@@ -464,6 +381,8 @@ def test_the_default_settings_are_the_recorded_choice():
 
     text = (Path(__file__).resolve().parent.parent / "benchmarks" / "results" / "decision.md").read_text()
     chosen = ast.literal_eval(re.search(r"^chosen=(\{.*\})$", text, re.M).group(1))
+    # ``doubt`` (the doubtful-word check, removed since) was chosen at 1.0, where no word was ever doubtful
+    assert chosen.pop("doubt", 1.0) == 1.0
     assert chosen == asdict(DEFAULT_SETTINGS)
     assert "field-validation" in text and "field-novel" in text and "field-set" not in text
 
@@ -532,28 +451,6 @@ def test_a_command_asked_about_that_would_make_the_instruction_impossible_is_no_
     assert asked.action == "ask" and asked.refusal.message.endswith("Is that what you mean?")
 
 
-def test_a_refusal_that_rests_on_an_unanswered_question_stays_open():
-    """``would_have_been``: with nothing installed, "the stack right of the one you just used" is refused, but had
-    the robot carried out what it asked about it would be a command: it stays open with that command, and a later
-    command it would change ("the 2 by 8" is another panel once the middle stack's top is used) is asked about."""
-    from drywall_lab.decision import would_have_been
-    unsure, unsure_tags = _wt("the 4/width by 8/length panel on stud 500100/ID_stud on the centre/Vr_md line/Vr_md")
-    left = ["O" if t == "Vr_md" else t for t in unsure_tags]
-    after, after_tags = _wt("the panel from the stack right/Dw_loc1 of/Dw_loc1 the one you just/Dw_loc2 used/Dw_loc2 "
-                            "on stud 500104/ID_stud")
-    two, two_tags = _wt("a 2/width by 8/length sheet on stud 500108/ID_stud")
-    steps, readings = [unsure, after, two], [_unsure(unsure, unsure_tags, left), _Gold(after_tags), _Gold(two_tags)]
-    decisions = play_episode(steps, readings, TAGS, ActionHistory())
-    assert [d.action for d in decisions] == ["ask", "refuse", "ask"]
-    assert decisions[1].refusal.reason == "no_history"
-    assert {o[1] for o in would_have_been(decisions[1], [(decisions[0], decisions[0].options, 0)], ActionHistory())} \
-        == {"500321"}
-    assert {o[1] for o in decisions[2].options} == {"500321", "500311"}
-    from dataclasses import replace
-    off = play_episode(steps, readings, TAGS, ActionHistory(), replace(DEFAULT_SETTINGS, pending=False))
-    assert [d.action for d in off] == ["ask", "refuse", "act"]
-
-
 def test_a_reading_taken_for_an_undetermined_best_one_passes_the_word_checks():
     """Step 2 takes the next reading when the best is undetermined, but that reading is checked against its words as
     the best one would be: "the 2x8 ... a full one" with both tagged names two panels, so the robot asks."""
@@ -565,17 +462,6 @@ def test_a_reading_taken_for_an_undetermined_best_one_passes_the_word_checks():
     single = ["O" if t == "dim" else t for t in tags]
     d = decide(words, [(missed, math.log(0.5)), (single, math.log(0.45))], _sure(single), TAGS)
     assert d.action == "recover" and d.command.drywall_id == "500321"
-
-
-def test_a_size_the_tagger_missed_still_says_the_panel():
-    """``half="said"``: "put one of the four by eight sheets on 500104" with the size untagged is refused (which
-    panel?), but the words said the panel: the commands it may have meant are every panel on top of a stack there."""
-    history = ActionHistory()
-    words = "put one of the four by eight sheets on 500104".split()
-    tags = ["O"] * (len(words) - 1) + ["ID_stud"]
-    refused = decide_tags(words, tags, TAGS, history)
-    assert refused.refusal.reason == "undetermined"
-    assert {o[1] for o in completions(refused, history, "said")} == {"500320", "500321", "500322"}
 
 
 def test_a_word_that_only_points_back_names_no_second_panel():
@@ -606,65 +492,32 @@ def test_a_rival_torn_between_the_command_and_another_is_no_rival():
 
 
 def test_a_placement_that_goes_against_the_words_takes_the_reading_that_says_it():
-    """"the 2x8 laid along the floor at 500104" with the row words missed: standing it up goes against "laid". The
-    reading that differs only in the placement and says the bottom row is taken, whether the upright one is a command
-    (step 1 would ask) or refused by the site (step 4). Not when another reading that agrees with the words gives
-    another command."""
-    words, upright = _wt("the 2x8/width laid along the floor at 500104/ID_stud")
-    row = ["Hr_btm" if w == "floor" else t for w, t in zip(words, upright)]
-    assert placement_contradicted(words, upright) and not placement_contradicted(words, row)
-    d = decide(words, [(upright, math.log(0.7)), (row, math.log(0.25))], _sure(upright), TAGS)
-    assert d.action == "recover" and d.command.placement.value == "horizontal_bottom"
-    assert "goes against the words" in str(d.interpretation.trace)
-    # the upright reading refused by the site: a 4 x 6 already lies in the top row from 500104
-    history = ActionHistory()
-    history.record(interpret(*_wt("500322/ID_wall on 500104/ID_stud top/Hr_top row/Hr_top"), history).command)
-    d = decide(words, [(upright, math.log(0.7)), (row, math.log(0.25))], _sure(upright), TAGS, history)
-    assert d.action == "recover" and d.command.as_contract() == {
-        "drywall_id": "500321", "stud_id": "500104", "placement": "horizontal_bottom"}
-    # another reading that says it lies, on another stud: no single command to take, so the robot asks
-    words, upright = _wt("the 2x8/width laid along the floor at 500104/ID_stud or 500102")
-    row = ["Hr_btm" if w == "floor" else t for w, t in zip(words, upright)]
-    other = ["ID_stud" if w == "500102" else "O" if w == "500104" else t for w, t in zip(words, row)]
-    d = decide(words, [(upright, math.log(0.6)), (row, math.log(0.2)), (other, math.log(0.15))], _sure(upright), TAGS)
-    assert d.action == "ask"
-    # a word that says it stands goes against a row: "keep the top clear , the 4x6 stands on 500102"
+    """"keep the top clear , the 4x6 stands on 500102" with "top" read as the top row: a row goes against "stands".
+    The reading that differs only in the placement and stands the panel up is taken (step 1 would ask). Not when
+    another reading that agrees with the words gives another command."""
     words, rowed = _wt("keep the top/Hr_top clear , the 4x6/width stands on 500102/ID_stud")
     plain = ["O" if t == "Hr_top" else t for t in rowed]
     assert placement_contradicted(words, rowed) and not placement_contradicted(words, plain)
     d = decide(words, [(rowed, math.log(0.7)), (plain, math.log(0.25))], _sure(rowed), TAGS)
     assert d.action == "recover" and d.command.placement.value == "vertical_left"
+    assert "goes against the words" in str(d.interpretation.trace)
+    # another reading that stands it up, on another stud: no single command to take, so the robot asks
+    words, rowed = _wt("keep the top/Hr_top clear , the 4x6/width stands on 500102/ID_stud or 500106")
+    plain = ["O" if t == "Hr_top" else t for t in rowed]
+    other = ["ID_stud" if w == "500106" else "O" if w == "500102" else t for w, t in zip(words, plain)]
+    d = decide(words, [(rowed, math.log(0.6)), (plain, math.log(0.2)), (other, math.log(0.15))], _sure(rowed), TAGS)
+    assert d.action == "ask"
 
 
-def test_rivals_that_read_the_words_less_fully_are_no_rivals():
-    """Three kinds of rival that go against the words the best reading follows: one that reads only what a change of
-    mind took back ("the right stack . Scratch that , the left stack" read with "right"), one that stands up a panel
-    the words say lies, and one that leaves out the row phrase the best reading takes its row from ("the next
-    bottom-row sheet"). The robot acts on the best reading. A row phrase right after a negation ("skip the top row")
-    may well be left out: that rival still asks."""
+def test_a_rival_whose_placement_goes_against_the_words_is_no_rival():
+    """When the best reading's placement agrees with the words, a rival whose placement goes against a word that says
+    how the panel goes ("top" read as the top row although the 4x6 "stands") is no rival: the robot acts."""
     rival = math.log(0.8) - DEFAULT_SETTINGS.margin / 2  # within the margin
-    words, best = _wt("take the one from the right stack . Scratch that , the left/Dw_loc1 stack . On 500100/ID_stud")
-    abandoned = ["Dw_loc1" if w == "right" else "O" if w == "left" else t for w, t in zip(words, best)]
-    d = decide(words, [(best, math.log(0.8)), (abandoned, rival)], _sure(best), TAGS)
-    assert d.action == "act" and d.command.drywall_id == "500320"
-    taken_back = ["Dw_loc1" if w == "right" else t for w, t in zip(words, best)]  # both tagged: "right" taken back
-    d = decide(words, [(taken_back, math.log(0.8)), (abandoned, rival)], _sure(taken_back), TAGS)
-    assert d.action == "act" and d.command.drywall_id == "500320"
-
-    words, lying = _wt("the 4/width by 6/length panel lying down at 500102/ID_stud along the bottom/Hr_btm")
-    upright = ["O" if t == "Hr_btm" else t for t in lying]
-    d = decide(words, [(lying, math.log(0.8)), (upright, rival)], _sure(lying), TAGS)
-    assert d.action == "act" and d.command.placement.value == "horizontal_bottom"
-
-    words, row = _wt("for the next bottom-row/Hr_btm sheet start at 500106/ID_stud , the right/Dw_loc1 stack")
-    plain = ["O" if t == "Hr_btm" else t for t in row]
-    d = decide(words, [(row, math.log(0.8)), (plain, rival)], _sure(row), TAGS)
-    assert d.action == "act" and d.command.placement.value == "horizontal_bottom"
-
-    words, row = _wt("the 4x6/width on 500104/ID_stud , skip the top/Hr_top row/Hr_top for now")
-    plain = ["O" if t == "Hr_top" else t for t in row]
-    d = decide(words, [(row, math.log(0.8)), (plain, rival)], _sure(row), TAGS)
-    assert d.action == "ask" and {o[3] for o in d.options} == {"horizontal_top", "vertical_left"}
+    words, best = _wt("the 4x6/width stands on 500102/ID_stud , keep the top clear")
+    rowed = ["Hr_top" if w == "top" else t for w, t in zip(words, best)]
+    assert outcome_of(interpret(words, rowed))[0] == "command"
+    d = decide(words, [(best, math.log(0.8)), (rowed, rival)], _sure(best), TAGS)
+    assert d.action == "act" and d.command.placement.value == "vertical_left"
 
 
 def test_a_half_understood_refusal_may_have_meant_what_a_rival_read():

@@ -47,14 +47,26 @@ READINGS = {
 }
 
 
-def test_a_question_answered_yes_carries_out_the_first_command():
+def test_an_either_or_question_answered_the_first_carries_out_the_first_command():
     d = Dialogue(ScriptedTagger(READINGS))
     reply = d.say(CENTRE)
     assert reply.question and reply.command is None and len(d.history) == 0
     assert reply.text.startswith("Did you mean panel 500321 on stud 500104 upright with its edge on the stud's centre")
-    reply = d.say("yes")
+    assert [c.placement.value for c in reply.options] == ["vertical_middle", "vertical_left"]
+    reply = d.say("the first")
     assert reply.command.as_contract() == {"drywall_id": "500321", "stud_id": "500104", "placement": "vertical_middle"}
     assert len(d.history) == 1 and d.pending is None
+
+
+def test_a_bare_yes_to_an_either_or_question_is_no_answer_and_the_robot_asks_which():
+    d = Dialogue(ScriptedTagger(READINGS))
+    d.say(CENTRE)
+    reply = d.say("yes")
+    assert reply.question and reply.command is None and len(d.history) == 0 and reply.text.startswith("Which one")
+    assert d.say("the centre line").command.placement.value == "vertical_middle"  # an answer by what it says
+    d = Dialogue(ScriptedTagger(READINGS))
+    d.say(CENTRE)
+    assert d.say("neither").command is None and d.pending is None and len(d.history) == 0
 
 
 def test_the_second_option_and_no():
@@ -125,5 +137,73 @@ def test_chat_widget_runs_a_scripted_exchange():
     box = ui.children[0].children[0]
     box.value = CENTRE  # Enter in the text box sends it
     assert ui.dialogue.pending is not None and box.value == ""
-    box.value = "yes"
+    box.value = "the second"
     assert len(ui.dialogue.history) == 1 and ui.dialogue.pending is None
+    assert ui.dialogue.history.commands[0].placement.value == "vertical_left"
+
+
+# --- the dialogue contract (the spec's dialogue.md) -------------------------------------------------------------
+def _serve(requests: list, tagger=None) -> list[dict]:
+    import json
+
+    from drywall_lab.dialogue import serve
+
+    lines = "".join((r if isinstance(r, str) else json.dumps(r)) + "\n" for r in requests)
+    out = io.StringIO()
+    assert serve(Dialogue(tagger or ScriptedTagger(READINGS)), io.StringIO(lines), out) == 0
+    return [json.loads(line) for line in out.getvalue().splitlines()]
+
+
+def test_the_contract_asks_with_options_and_carries_out_the_one_chosen():
+    replies = _serve([{"new": "ep1"}, {"say": CENTRE}, {"choose": 1}, {"say": CENTRE}, {"new": "ep2"}, {"say": CENTRE},
+                      {"choose": None}, {"choose": 0}])
+    assert [r["kind"] for r in replies] == ["ready", "question", "command", "refusal", "ready", "question", "nothing",
+                                            "error"]
+    assert replies[1]["options"] == [
+        {"drywall_id": "500321", "stud_id": "500104", "placement": "vertical_middle"},
+        {"drywall_id": "500321", "stud_id": "500104", "placement": "vertical_left"}]
+    assert replies[2]["command"] == replies[1]["options"][1]
+    # the next 2 x 8 (500311) on the same stud overlaps the one carried out: no option that does not fit
+    assert replies[3]["reason"] == "overlap" and replies[5]["options"] == replies[1]["options"]
+    assert all(isinstance(r["text"], str) and r["text"] for r in replies)
+
+
+def test_new_starts_a_fresh_site_and_a_refusal_has_its_reason():
+    replies = _serve([{"new": 1}, {"say": "the full sheet on stud 500100"}, {"new": "2"},
+                      {"say": "panel 500300 on stud 500108"}, {"say": "the full sheet on stud 500100"}])
+    assert replies[1]["command"]["drywall_id"] == "500320"
+    assert replies[3] == {"kind": "refusal", "reason": "not_on_top", "text": replies[3]["text"]}
+    assert replies[4]["command"]["drywall_id"] == "500320"  # the fresh site has it on top again
+
+
+def test_a_malformed_request_gets_an_error_and_the_process_goes_on():
+    from drywall_lab.dialogue import MAX_REQUEST_CHARS
+
+    junk = ['{"say": "put the', "\x00\x81 garbage", "[1, 2]", "42", '{"say": 5}', '{"choose": true}',
+            '{"choose": 7}', '{"new": "a", "say": "b"}', '{"shout": "x"}', '{"say": "' + "x" * (MAX_REQUEST_CHARS * 3) + '"}',
+            "", {"new": "after"}, {"say": "the full sheet on stud 500100"}]
+    replies = _serve(junk)
+    assert [r["kind"] for r in replies] == ["error"] * 10 + ["ready", "command"]  # the empty line gets no reply
+    assert "longer than" in replies[9]["text"]
+
+
+def test_an_instruction_too_long_is_refused_before_tagging():
+    """``run``, ``chat`` and ``dialogue`` refuse an instruction over ``MAX_INSTRUCTION_WORDS`` words without tagging
+    it: the tagger here fails the test if it is given one."""
+    from drywall_lab.pipeline import MAX_INSTRUCTION_WORDS, run_episode
+
+    class ShortOnly(ScriptedTagger):
+        def predict_confidence(self, sentences, k=5, batch_size=64):
+            assert all(len(s) <= MAX_INSTRUCTION_WORDS for s in sentences), "a long instruction was tagged"
+            return super().predict_confidence(sentences, k, batch_size)
+
+    readings = {**READINGS, "": [("", 1.0)]}
+    long_text = "put the full sheet on stud 500100 " * 30_000
+    replies = _serve([{"new": 1}, {"say": long_text[:19_000]}, {"say": "the full sheet on stud 500100"}], ShortOnly(readings))
+    assert replies[1]["kind"] == "refusal" and "at most 200 words" in replies[1]["text"]
+    assert replies[2]["kind"] == "command"
+    results = run_episode({"id": "e", "instructions": [long_text, "the full sheet on stud 500100"]}, ShortOnly(readings))
+    assert results[0].refusal is not None and "at most 200 words" in results[0].refusal.message
+    assert results[1].command.drywall_id == "500320"
+    d = Dialogue(ShortOnly(readings))
+    assert "at most 200 words" in d.say(long_text).text and len(d.history) == 0

@@ -1,7 +1,6 @@
 """The paper's NLU study (drywall_lab/nlu/experiments.py), on tiny settings: every table and figure is written."""
 from __future__ import annotations
 
-import importlib.util
 import json
 import re
 import shutil
@@ -12,6 +11,7 @@ from types import ModuleType
 
 import pandas as pd
 import pytest
+from conftest import load_benchmark
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -66,10 +66,7 @@ README = REPO / "README.md"
 
 def load_script(name: str) -> ModuleType:
     """A script of ``benchmarks/`` imported as a module (it is not a package)."""
-    spec = importlib.util.spec_from_file_location(f"benchmark_{name}", REPO / "benchmarks" / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_benchmark(name)
 
 
 def grid_lines(text: str) -> list[dict]:

@@ -119,6 +119,9 @@ def _held_back_words() -> set[str]:
         for template in bank:
             words = {w.split("/")[0].lower() for w in template.lstrip("~").split() if not w.startswith("{")}
             (held if template.startswith("~") else shared).update(words)
+    from drywall_lab.corpus import channels as C  # the remarks of a channel met in training are shared words too
+    for bank in (C.ASIDES, C.ASIDE_THINGS, C.ASIDE_FRAMES, C.ASIDE_LEADS, C.REASON_LEADS):
+        shared.update(w.lower() for text in bank for w in text.split() if not w.startswith("{"))
     return held - shared
 
 

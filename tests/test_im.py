@@ -101,45 +101,15 @@ def test_two_counts_are_refused():
         "undetermined", "'second three to the right' gives two counts, 2 and 3: which stud?")
 
 
-@pytest.mark.parametrize("markup, index", [
-    ("zero studs to/St_loc1 the/St_loc1 right/St_loc1", 0),
-    ("two panels over to/Dw_loc1 the/Dw_loc1 left/Dw_loc1", 0),
-    ("the 3rd stud from/St_loc1 the/St_loc1 right/St_loc1", 1),
-    ("it is the one left/Dw_loc1", None),                # "one": the generic noun
-    ("the stud 500104 to/St_loc1 the/St_loc1 right/St_loc1", None),  # an id is not a count
-    ("the 4/width by 8/length panel left/Dw_loc1", None),  # tagged: not an untagged count
-    ("two/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1", None),
-    ("two studs right/St_loc1 of 500104/St_loc2 , no , three/St_loc1", None),  # the position has its count
-    ("number 2 stud first/St_loc1", None),               # a list number before an ordinal
-    ("number 2 stud middle/St_loc1", None),              # the middle takes no count
-    ("sitting 3rd one/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of 500103/St_loc2", 1),  # 'one': 3rd's noun
-    ("the second one/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1", 1),
-    ("sitting 3rd/St_loc1 one/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1", None),  # both tagged: the count is 3
-])
-def test_untagged_count_before(markup, index):
-    ti = tagged(markup)
-    tag = "St_loc1" if "St_loc1" in ti.tags else "Dw_loc1"
-    assert W.untagged_count_before(ti.words, ti.tags, tag) == index
-
-
-@pytest.mark.parametrize("tag, words, says", [
-    ("Hr_btm", ["bottom-row"], True), ("Hr_top", ["top-course"], True), ("Vr_md", ["centre-line"], True),
-    ("Vr_md", ["c-l"], True), ("Hr_btm", ["row"], False), ("Vr_md", ["left-line"], False), ("Hr_top", ["bottom-row"], False),
-])
-def test_a_hyphenated_placement_word_says_its_placement(tag, words, says):
-    """ "a bottom-row sheet": the row word inside a compound says the row (the decision layer's word checks)."""
-    assert W.says_placement(tag, words) is says
-
-
-def test_a_lying_word_far_from_the_instruction_is_a_story():
-    """ "on the last job we did every wall sideways anyway the plasterboard from ..." says nothing of how this panel
-    goes: 'sideways' is more than ``LYING_REACH`` words from every tagged word."""
-    story = "on the last job we did every wall sideways anyway the plasterboard from the left/Dw_loc1 pile on 500101/ID_stud"
-    near = "the 4/width by 6/length lying down at stud 500100/ID_stud"
-    for markup, said in ((story, []), (near, ["lying"])):
+def test_an_upright_word_far_from_the_instruction_is_a_story():
+    """ "on the last job we did every wall upright anyway the plasterboard from ..." says nothing of how this panel
+    goes: 'upright' is more than ``LYING_REACH`` words from every tagged word."""
+    story = "on the last job we did every wall upright anyway the plasterboard from the left/Dw_loc1 pile on 500101/ID_stud"
+    near = "the 4/width by 6/length standing up at stud 500100/ID_stud"
+    for markup, said in ((story, []), (near, ["standing"])):
         words, tags = _wt(markup)
-        assert [words[i] for i in W.lying_words(words, tags)] == said
-        assert [words[i] for i in W.lying_words(words)] == [w for w in words if w in ("sideways", "lying")]
+        assert [words[i] for i in W.upright_words(words, tags)] == said
+        assert [words[i] for i in W.upright_words(words)] == [w for w in words if w in ("upright", "standing")]
 
 
 def test_ids_in_keeps_order_and_drops_repeats():
@@ -171,11 +141,7 @@ TARGETS = [
     ("the 6/width by 4/length panel", (), "500322"),  # turned
     ("a 2/width foot wide panel", (), "500321"),
     ("a panel 6/length feet long", (), "500322"),
-    # a texted "1" after a size is the panel, not a size of 1 ft; a number before a whole "A by B" counts panels
-    ("a 2/width ft wide 1/width on it", (), "500321"),
     ("the 4x8/width one/length", (), "500320"),
-    ("over all three/width 2/width by 8/length", (), "500321"),
-    ("crew two/width this is bravo four/width by six/length", (), "500322"),
     ("a panel that is six/width feet wide", (), "500322"),  # no width 6: turned, the 4 x 6's length
     ("the length is 8/length and the width is 2/width", (), "500321"),
     # rule 3: size words and back-references
@@ -268,7 +234,6 @@ TARGET_REFUSALS = [
     ("the panel just/Dw_loc1 to/Dw_loc1 the/Dw_loc1 right/Dw_loc1", (), "undetermined"),
     ("the panel two/Dw_loc1 from/Dw_loc1 the/Dw_loc1 left/Dw_loc1", (), "undetermined"),
     ("the same/Dw_loc1 stack", (("500322", "500100", "vertical_left"),), "undetermined"),
-    ("two panels over to/Dw_loc1 the/Dw_loc1 right/Dw_loc1 of 500300/Dw_loc2", (), "undetermined"),
     # a lone "size" names no size
     ("the size/dim panel", (), "undetermined"),
     ("a panel sized/dim for the wall", (), "undetermined"),
@@ -319,6 +284,14 @@ def test_not_on_top_says_what_is_above():
 # --- destination rules (Fig. 12) ------------------------------------------------------------
 STUDS = [
     ("on stud 500107/ID_stud", (), "500107"),
+    # an anchor named by where it is on the wall, as rule 2 reads it; a step said as an order along the wall
+    ("the stud two/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of the fourth/St_loc2 stud", (), "500105"),
+    ("the stud right/St_loc1 of the third/St_loc2 from/St_loc2 the/St_loc2 left/St_loc2", (), "500103"),
+    ("the stud three/St_loc1 left/St_loc1 of the centre/St_loc2 stud", (), "500103"),
+    ("the stud two/St_loc1 past/St_loc1 500104/St_loc2", (), "500106"),
+    ("the stud after/St_loc1 the middle/St_loc2 one", (), "500107"),
+    ("3/St_loc1 back/St_loc1 from/St_loc1 the 2nd/St_loc2 from/St_loc2 the/St_loc2 right/St_loc2", (), "500108"),
+    ("the stud before/St_loc1 the last/St_loc2 one", (("500320", "500104", "vertical_left"),), "500103"),
     ("on STUD 500107,/ID_stud", (), "500107"),
     ("the leftmost/St_loc1 stud", (), "500100"),
     ("the most/St_loc1 left/St_loc1 stud", (), "500100"),
@@ -410,15 +383,9 @@ STUD_REFUSALS = [
     ("the stud 500104/St_loc1 to the right/St_loc1", (), "undetermined"),
     ("the same/St_loc1 stud on the left/St_loc1", (("500320", "500104", "vertical_left"),), "undetermined"),
     ("the fourteenth/St_loc1 stud", (), "off_the_end"),
-    # a count left untagged right before the position would be dropped: refused
-    ("zero studs to/St_loc1 the/St_loc1 right/St_loc1 of 500104/St_loc2", (), "undetermined"),
-    ("three to/St_loc1 the/St_loc1 left/St_loc1", (), "undetermined"),
-    ("the 2nd stud from/St_loc1 the/St_loc1 right/St_loc1", (), "undetermined"),
     ("the stud thirteen/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of 500112/St_loc2", (), "off_the_end"),
-    # an anchor the guidelines do not name (an id, an end, the previous stud) is not guessed
-    ("the stud two/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of the fourth/St_loc2 stud", (), "undetermined"),
-    ("the stud right/St_loc1 of the third/St_loc2 from/St_loc2 the/St_loc2 left/St_loc2", (), "undetermined"),
-    ("the stud right/St_loc1 of the middle/St_loc2 stud", (), "undetermined"),
+    ("the stud after/St_loc1 the very/St_loc2 last/St_loc2 stud", (), "off_the_end"),
+    # an anchor that mixes the previous stud with a position is not guessed
     ("the stud right/St_loc1 of the previous/St_loc2 leftmost/St_loc2 stud", (("500320", "500104", "vertical_left"),),
      "undetermined"),
     # two counts in one relative phrase; "same" with a count
@@ -455,8 +422,6 @@ def test_stud_refusals(markup, history, reason):
      "'three to the left' counts from another stud but does not say which one: which stud?"),
     ("put the standard/dim panel on the second/St_loc1 stud in the middle/St_loc1",
      "'second stud in the middle' gives a count and the middle: which stud?"),
-    ("put the standard/dim panel zero studs to/St_loc1 the/St_loc1 right/St_loc1 of 500104/St_loc2",
-     "In 'zero studs to the right' I could not tell whether 'zero' is the count: which stud?"),
 ])
 def test_unplaceable_stud_positions_say_what_is_missing(markup, message):
     result = interpret(*_wt(markup))
@@ -575,66 +540,10 @@ def test_tagged_instruction_checks_its_input():
         TaggedInstruction(["a"], ["B-ID_wall"])
 
 
-@pytest.mark.parametrize("word, punctuation", [("•", True), ("—", True), ("->", True), ("|", True), ("4x8", False),
-                                                ("#4", False), ("stud's", False), ("é", False)])
-def test_is_punctuation(word, punctuation):
-    assert W.is_punctuation(word) is punctuation
-
-
-def test_a_tag_on_punctuation_is_read_as_o():
-    """A bullet or a dash carries no information (guidelines 1): a tagger's tag on it changes nothing."""
-    words = ["•", "Panel", "4", "by", "8", "•", "Stud", "500104", "—", "centre", "line"]
-    tags = ["St_loc1", "O", "width", "O", "length", "St_loc1", "O", "ID_stud", "Dw_loc1", "Vr_md", "Vr_md"]
-    ti = TaggedInstruction(words, tags)
-    assert [t for w, t in zip(ti.words, ti.tags) if W.is_punctuation(w)] == ["O", "O", "O"]
-    result = interpret(words, tags)
-    assert result.command is not None and (result.command.drywall_id, result.command.stud_id) == ("500320", "500104")
-    assert result.tags[0] == "O"
-
-
-@pytest.mark.parametrize("split", ALL_SPLITS)
-def test_gold_tags_never_tag_punctuation(split):
-    """So reading a tag on punctuation as ``O`` never changes a gold reading."""
-    tagged_punctuation = [(row["id"], w, t) for row in split_rows(split) for w, t in zip(row["words"], row["tags"])
-                          if t not in ("O", "Trg", "Dst") and W.is_punctuation(w)]
-    assert not tagged_punctuation, tagged_punctuation[:5]
-
-
 def test_coreference_tags_are_read_as_o():
     words, tags = _wt("the full-size/dim drywall on stud 500101/ID_stud")
     tags = ["Trg" if w == "drywall" else ("Dst" if w == "stud" else t) for w, t in zip(words, tags)]
     assert interpret(words, tags).command.drywall_id == "500320"
-
-
-# --- the stud spacing is no placement ---------------------------------------------------------------------
-@pytest.mark.parametrize("text, spacing", [
-    ("the studs are 16 in on centre", ["16", "in", "on", "centre"]),
-    ("studs at sixteen inches on center here", ["sixteen", "inches", "on", "center"]),
-    ("framed 24 o.c.", ["24", "o.c."]),
-    ("it's sixteen-inch centres", ["sixteen-inch", "centres"]),
-    ("the 4 by 8 on centre of 500104", []),  # a panel size: the placement
-    ("500104 on centre", []),  # an id
-    ("the 12th stud on centre", []),  # an ordinal
-])
-def test_stud_spacing(text, spacing):
-    words = text.split()
-    assert [words[i] for i in W.stud_spacing(words)] == spacing
-
-
-def test_the_stud_spacing_is_read_as_o():
-    """Guidelines 4.7: "16 in on centre" says how the wall is framed; tagged Vr_md it still puts no panel on a centre line."""
-    words, tags = _raw("walls are sixteen on/Vr_md centre/Vr_md , sheet 500320/ID_wall on the leftmost/St_loc1 stud")
-    result = interpret(words, tags)
-    assert result.command.placement is Placement.VERTICAL_LEFT
-    assert result.trace.steps[0].rule == "R0 stud spacing" and "'sixteen on centre'" in result.trace.steps[0].conclusion
-    words, tags = _raw("the 4/width by 8/length on/Vr_md centre/Vr_md of 500104/ID_stud")
-    assert interpret(words, tags).command.placement is Placement.VERTICAL_MIDDLE
-
-
-@pytest.mark.parametrize("split", ALL_SPLITS)
-def test_gold_tags_never_tag_a_stud_spacing(split):
-    spaced = [row["id"] for row in split_rows(split) for i in W.stud_spacing(row["words"]) if row["tags"][i] != "O"]
-    assert not spaced, spaced[:5]
 
 
 # --- a change of mind: the final intention counts (im/correction.py) -------------------------------------
@@ -659,17 +568,12 @@ CORRECTED = [
     ("the 2x8/width one/St_loc1 right/St_loc1 of 500104/St_loc2 , sorry , of 500106/St_loc2", (), ("500321", "500107", "vertical_left")),
     # a stack, an id, a size, a placement said again
     ("from the right/Dw_loc1 pile scratch that the left/Dw_loc1 pile on 500103/ID_stud", (), ("500320", "500103", "vertical_left")),
+    ("a full/dim sheet on 500104/ID_stud , on second thought , on 500105/ID_stud", (), ("500320", "500105", "vertical_left")),
     ("the 2x8/width on 500101/ID_stud no I mean 500100/ID_stud", (), ("500321", "500100", "vertical_left")),
     ("the 4/width by 6/length , actually a full/dim one , on 500104/ID_stud", (), ("500320", "500104", "vertical_left")),
     ("500320/ID_wall on 500104/ID_stud up/Hr_top top/Hr_top oops centre/Vr_md line/Vr_md", (), ("500320", "500104", "vertical_middle")),
-    # an upright word right after the correction says the default
-    ("500320/ID_wall on 500104/ID_stud up/Hr_top top/Hr_top no wait standing up", (), ("500320", "500104", "vertical_left")),
     # a position said again as an id
     ("the 2x8/width on the last/St_loc1 stud actually 500105/ID_stud", (), ("500321", "500105", "vertical_left")),
-    # a negated alternative, before or after the one meant
-    ("the right/Dw_loc1 pile , not the left/Dw_loc1 , on 500104/ID_stud", (), ("500322", "500104", "vertical_left")),
-    ("not 500321/ID_wall , 500322/ID_wall on 500104/ID_stud", (), ("500322", "500104", "vertical_left")),
-    ("the 2x8/width on 500105/ID_stud , not on 500104/ID_stud", (), ("500321", "500105", "vertical_left")),
     # "not that" is a correction, not a negation of what follows
     ("the 4x8/width , not that , the 2x8/width on 500104/ID_stud", (), ("500321", "500104", "vertical_left")),
 ]
@@ -684,7 +588,7 @@ def test_only_the_final_intention_counts(markup, history, expected):
     assert result.command is not None, result.summary()
     assert (result.command.drywall_id, result.command.stud_id, result.command.placement.value) == expected
     step = result.trace.steps[0]
-    assert (step.stage, step.rule) == ("reading", "R0 final intention") and (" taken back by " in step.conclusion or " ruled out by " in step.conclusion)
+    assert (step.stage, step.rule) == ("reading", "R0 final intention") and " taken back by " in step.conclusion
 
 
 @pytest.mark.parametrize("markup, reason", [
@@ -700,18 +604,6 @@ def test_what_no_correction_takes_back_is_still_refused(markup, reason):
     result = interpret(words, tags)
     assert result.refusal is not None and result.refusal.reason == reason, result.summary()
     assert not TaggedInstruction(words, tags).taken_back
-
-
-@pytest.mark.parametrize("markup", [
-    "why is the 2x8/width not on 500104/ID_stud yet",  # the only stud said: no alternative ruled out
-    "the 2x8/width on 500104/ID_stud , not upright but on the centre/Vr_md line/Vr_md",  # the negation is of 'upright'
-    "the 2x8/width on 500104/ID_stud , don't forget the centre/Vr_md line/Vr_md",  # a double negation
-    "not , 500320/ID_wall on 500104/ID_stud",  # punctuation ends what a negation rules out
-])
-def test_a_negation_rules_out_only_an_alternative(markup):
-    words, tags = _raw(markup)
-    assert TaggedInstruction(words, tags).taken_back == {}
-    assert interpret(words, tags).command is not None
 
 
 def test_the_trace_names_what_a_correction_took_back():
@@ -995,22 +887,22 @@ def test_an_eight_footer_is_ambiguous():
                                                      max_size=len(words)))))
 def test_a_correction_only_ever_reads_tags_as_o(words_tags):
     """Whatever the words and tags: only tagged words are taken back, each by words of a correction that stand after
-    it or of a negation that stand before it, and an instruction without those words keeps every tag."""
-    from drywall_lab.im.correction import CORRECTION_CUES, NEGATIONS, taken_back
+    it, and an instruction without those words keeps every tag."""
+    from drywall_lab.im.correction import CORRECTION_CUES, taken_back
 
     words, tags = words_tags
     back = taken_back(words, tags)
-    cues = {" ".join(c) for c in CORRECTION_CUES + NEGATIONS}
+    cues = {" ".join(c) for c in CORRECTION_CUES}
     for i, cue in back.items():
         assert tags[i] not in ("O", "Trg", "Dst")
         said = tuple(W.normalise(w) for w in cue.split())
         assert " ".join(said) in cues
-        assert cue.split()[0] in (words[i + 1:] if said in CORRECTION_CUES else words[:i])
-    if {c[0] for c in CORRECTION_CUES + NEGATIONS}.isdisjoint(W.normalise(w) for w in words):
+        assert cue.split()[0] in words[i + 1:]
+    if {c[0] for c in CORRECTION_CUES}.isdisjoint(W.normalise(w) for w in words):
         assert back == {}
-    ti = TaggedInstruction(words, tags)  # it reads punctuation as O first, so it may take back less than ``back``
+    ti = TaggedInstruction(words, tags)  # it reads a place in a stack as O first, so it may take back less
     assert all(t == "O" for i, t in enumerate(ti.tags) if i in ti.taken_back)
-    assert set(ti.taken_back) <= set(back) or any(W.is_punctuation(w) for w in words)
+    assert set(ti.taken_back) <= set(back)
 
 
 @pytest.mark.parametrize("markup, expected", [
@@ -1031,7 +923,7 @@ def test_a_place_in_a_stack_is_no_row(markup, expected):
 
 
 def test_word_readings_for_the_decision_checks():
-    # the words that say a panel stands, as lying_words reads lying ones: none after a take-back or a lying word
+    # the words that say a panel stands: none after a take-back or a lying word
     assert W.upright_words("the 4x6 stands on 500102".split()) == [2]
     assert W.upright_words("lying down , not upright".split()) == []
     # back-reference words that say the size is the same, and those that only point back
@@ -1041,18 +933,30 @@ def test_word_readings_for_the_decision_checks():
     # a place in a stack, never the top of the wall
     assert W.stack_place("take it off the top of the left stack".split()) == [4, 5, 6, 7, 8]
     assert W.stack_place("along the top of the wall".split()) == []
-    # "the upright" is a stud in trade talk, not how the panel goes
-    assert W.upright_words("the top one at the upright at the far left".split()) == []
 
 
-@pytest.mark.parametrize("markup, expected", [
-    # "left" after "has one" says what remains in the stack, not the left one
-    ("since the middle/Dw_loc1 pile has one left/Dw_loc1 , use it on 500106/ID_stud", "500321"),
-    ("the right/Dw_loc1 pile , only two left/Dw_loc1 in it , on 500106/ID_stud", "500322"),
+@pytest.mark.parametrize("markup, placement", [
+    ("take the top/Hr_top 4x6/width sheet to stud 500107/ID_stud", "vertical_left"),
+    ("left/Dw_loc1 pile top/Hr_top sheet to 500107/ID_stud", "vertical_left"),
+    ("the topmost/Hr_top 2x8/width onto 500103/ID_stud standing", "vertical_left"),
+    # a row said as a row stays one
+    ("the 4x6/width across the top/Hr_top sheetrock on 500107/ID_stud", "horizontal_top"),
+    ("the 4x6/width from the mid/Dw_loc1 bunch top/Hr_top on 500107/ID_stud", "horizontal_top"),
+    ("the 4x6/width on 500107/ID_stud in the top/Hr_top row/Hr_top", "horizontal_top"),
 ])
-def test_what_is_left_in_a_stack_is_no_side(markup, expected):
-    words, tags = _raw(markup)
-    result = interpret(words, tags)
-    assert result.command is not None and result.command.drywall_id == expected, result.summary()
-    # "is one left of 500108 free?" is a direction
-    assert W.what_is_left("is one left of 500108 free".split()) == []
+def test_the_uppermost_sheet_of_a_stack_is_no_row(markup, placement):
+    """``words.stack_place``: "the top sheet", "pile top sheet", "the topmost 2x8" name the sheet the robot takes
+    off its stack, never the top row, whatever the tagger says."""
+    words, tags = _wt(markup)
+    result = interpret(words, tags, ActionHistory())
+    assert result.command is not None and result.command.placement.value == placement, result.summary()
+
+
+def test_a_right_that_says_when_is_no_side():
+    """``words.time_words``: "right now" after a position says when; tagged as a side, it is read as ``O``."""
+    tokens = [t for t in parse("the 2x8/width on the stud two/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of "
+                               "500108/St_loc2 right/St_loc2 now") if t.is_word]
+    words, tags = [t.word for t in tokens], [t.tag for t in tokens]
+    result = interpret(words, tags, ActionHistory())
+    assert result.command is not None and result.command.stud_id == "500106", result.summary()
+    assert "R0 time word" in str(result.trace)

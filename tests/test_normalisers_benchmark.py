@@ -6,24 +6,19 @@ for seconds, is left out), and a library it cannot import is reported rather tha
 """
 from __future__ import annotations
 
-import importlib.util
 import re
-import sys
 from pathlib import Path
 from types import ModuleType
 
 import pytest
+from conftest import load_benchmark
 
 REPO = Path(__file__).resolve().parent.parent
 SITE_IDS = {str(i) for i in range(500100, 500113)} | {str(i) for i in range(500300, 500323)}
 
 
 def load_script() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("benchmark_normalisers", REPO / "benchmarks" / "normalisers.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its dataclasses look their module up there
-    spec.loader.exec_module(module)
-    return module
+    return load_benchmark("normalisers")
 
 
 @pytest.fixture(scope="module")

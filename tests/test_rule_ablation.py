@@ -33,7 +33,7 @@ def script() -> ModuleType:
 def test_every_entry_names_an_existing_attribute(script) -> None:
     names = [rule.name for rule in script.REGISTRY]
     assert len(names) == len(set(names)), "a rule is listed twice"
-    assert 25 <= len(script.REGISTRY) <= 45
+    assert 20 <= len(script.REGISTRY) <= 45
     for rule in script.REGISTRY:
         module = importlib.import_module(rule.module)
         assert hasattr(module, rule.attribute), rule.path
@@ -85,13 +85,13 @@ def test_a_rule_switched_off_changes_what_the_rules_see(script) -> None:
     from drywall_lab import decision
     from drywall_lab.im.trace import TaggedInstruction
 
-    words = "since the middle pile has one left , use it".split()
+    words = "the one at the bottom of the stack is cracked".split()
     tags = ["O"] * len(words)
-    tags[6] = "Dw_loc1"
-    assert TaggedInstruction(words, tags).in_stack == (6,)
-    with script.switched_off(script.rule_named("what_is_left")):
+    tags[4] = "Hr_btm"
+    assert TaggedInstruction(words, tags).in_stack == (4,)
+    with script.switched_off(script.rule_named("stack_place")):
         assert TaggedInstruction(words, tags).in_stack == ()
-    assert TaggedInstruction(words, tags).in_stack == (6,)
+    assert TaggedInstruction(words, tags).in_stack == (4,)
 
     words = "the second stud from the right , no , the fourth from the right".split()
     tags = ["O", "St_loc1", "O", "St_loc1", "St_loc1", "St_loc1", "O", "O", "O", "O", "St_loc1", "St_loc1", "St_loc1",

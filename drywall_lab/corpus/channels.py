@@ -195,17 +195,164 @@ ASIDES: tuple[str, ...] = (
     "the uppermost sheet on the middle pile is scratched",
     "the fourth stud from the corner is a bit bowed",
     "watch the cord on the floor by the stacks",
+    "the studs on this wall are sixteen on centre",
+    "this wall is framed 16 in on center",
+    "studs sit at sixteen-inch centres here",
 )
+#: The things an aside talks about: other panels, piles, rows, studs and openings, by size, count and position.
+ASIDE_THINGS: tuple[str, ...] = (
+    "the sheet on top of the {side} pile", "the top sheet on the {side} stack", "the bottom one in the {side} pile",
+    "the top of the {side} stack", "the {size}s", "two of the {size}s", "the last {size} on the truck",
+    "the top row", "the bottom row", "the top course", "the upper half of the wall", "the outlet box near the top",
+    "the switch box high on the wall", "the vent down at the bottom", "the window opening on the {side}",
+    "the {ordinal} stud from the {side}", "the middle stud", "the stud in the middle", "the centre line marks",
+    "the {side} end of the wall", "the door frame on the {side}", "the pile on the {side}", "the {size} offcuts",
+    "the {count} sheets left over", "the corner on the {side}",
+)
+#: What is said of them: no agreement in number needed.
+ASIDE_FRAMES: tuple[str, ...] = (
+    "mind {thing}", "careful with {thing}", "leave {thing} for later", "don't worry about {thing}",
+    "we come back to {thing} tomorrow", "the electrician still has to check {thing}", "watch out for {thing}",
+    "ignore {thing} for now", "{thing} can wait", "nobody touches {thing} today", "we measured {thing} twice",
+    "the plans changed for {thing}", "I will cut around {thing} myself", "forget about {thing}",
+)
+_ASIDE_SLOTS = {"side": ("left", "right", "middle", "far left", "far right", "first", "last"),
+                "size": ("4x8", "2x8", "4x6", "4 by 8", "two by eight", "4 x 6", "full sheet"),
+                "ordinal": ("second", "third", "4th", "fifth", "last"), "count": ("two", "three", "4", "five")}
+
+
+#: How an aside is tied on: before, between or after the instruction; a reason only after it.
+ASIDE_LEADS = ("", "", "by the way", "also", "fyi", "heads up", "note", "oh and")
+REASON_LEADS = ("because", "since", "as")
+
+
+def aside_words(rng: random.Random) -> list[str]:
+    """One remark: a fixed one (``ASIDES``) or a frame (``ASIDE_FRAMES``) said of a thing (``ASIDE_THINGS``)."""
+    if rng.random() < 0.3:
+        return rng.choice(ASIDES).split()
+    text = rng.choice(ASIDE_FRAMES).replace("{thing}", rng.choice(ASIDE_THINGS))
+    for slot, values in _ASIDE_SLOTS.items():
+        text = text.replace("{" + slot + "}", rng.choice(values))
+    return text.split()
 
 
 def asides(ch: Chooser, sentences: Sentences) -> Sentences:
-    """A remark before or after the instruction (``ASIDES``), its words ``O``; now and then tied on with "by the
-    way" or "also"."""
+    """A remark (``aside_words``) before, between or after the instruction's sentences, its words ``O``; now and
+    then tied on with "by the way", "also", "because" (after) or set off with dashes."""
     rng = ch.rng
-    words = rng.choice(ASIDES).split()
-    lead = rng.choice(["", "", "by the way", "also", "fyi", "heads up"]).split()
-    aside = _plain(*lead, *words) + [Token(".", None, None)]
-    return [aside] + sentences if rng.random() < 0.5 else sentences + [aside]
+    at = rng.randrange(len(sentences) + 1)
+    lead = rng.choice(list(ASIDE_LEADS) + (list(REASON_LEADS) if at == len(sentences) and at else [])).split()
+    aside = _plain(*lead, *aside_words(rng)) + [Token(".", None, None)]
+    if 0 < at < len(sentences) and rng.random() < 0.3:  # "-- mind the top row --" inside
+        aside = _plain("--") + aside[:-1] + _plain("--")
+    return sentences[:at] + [aside] + sentences[at:]
+
+
+# --- stack talk -----------------------------------------------------------------------------------------------
+STACK_WORDS = frozenset({"stack", "pile", "pallet", "bunch", "lot", "stacks", "piles"})
+_PANEL_WORDS = frozenset({"sheet", "panel", "board", "drywall", "piece", "one", "rock", "sheetrock", "plasterboard",
+                          "wallboard"})
+#: Which sheet of a pile: always its top one (the only one the robot may take), so every word here is ``O``.
+TOP_OF_A_PILE = (("the", "top", "of"), ("the", "very", "top", "of"), ("on", "top", "of"), ("the", "top", "of"))
+TOP_OF_NO_PILE = ("off the top of the pile", "from the top of its stack", "on top", "off the top", "at the top of the pile",
+                  "that's on top", "sitting on top", "from the top of the pile")
+TOP_BEFORE_A_PANEL = ("top", "topmost", "uppermost", "top")
+
+
+def stack_talk(ch: Chooser, sentences: Sentences) -> Sentences:
+    """The panel taken from the top of its pile, said in words that elsewhere name a row: "from the top of the
+    middle pile", "the top 2x8", "the top sheet", "right pile top sheet", "the 4x8 sheet off the top of the pile". Every added word is ``O``: the sheet on
+    top is the only one the robot may take, and "top" here is no row."""
+    rng = ch.rng
+    out: Sentences = []
+    done = False
+    for sentence in sentences:
+        new: Phrase = []
+        for i, tok in enumerate(sentence):
+            word = tok.word.lower() if tok.is_word else ""
+            ahead = [t.word.lower() for t in sentence[i + 1:i + 5] if t.is_word]
+            if not done and word in ("from", "off") and ahead[:1] == ["the"] and not STACK_WORDS.isdisjoint(ahead):
+                new += [tok] + _plain(*rng.choice(TOP_OF_A_PILE))  # "from" + "the top of" + "the middle pile"
+                done = True
+                continue
+            nxt = sentence[i + 1] if i + 1 < len(sentence) else None
+            standard = nxt is not None and nxt.is_word and (nxt.tag == "width" or (
+                nxt.tag == "dim" and nxt.word.lower() in ("full", "full-size", "standard", "regular")))
+            noun = nxt is not None and nxt.is_word and nxt.tag == "O" and nxt.word.lower() in _PANEL_WORDS - {"one"}
+            if not done and (word == "the" or (word in STACK_WORDS and tok.tag == "O")) and (standard or noun) \
+                    and rng.random() < 0.5:  # "the top 2x8", "the top sheet", "right pile top sheet"
+                new += [tok] + _plain(rng.choice(TOP_BEFORE_A_PANEL))
+                done = True
+                continue
+            new.append(tok)
+            last_noun = nxt is None or not nxt.is_word or nxt.word.lower() not in _PANEL_WORDS | {"of"}
+            if not done and word in _PANEL_WORDS and tok.tag == "O" and i and sentence[i - 1].is_word and last_noun \
+                    and sentence[i - 1].tag in ("width", "length", "dim") and rng.random() < 0.6:
+                new += _plain(*rng.choice(TOP_OF_NO_PILE).split())  # "the 4x8 sheet" + "off the top of the pile"
+                done = True
+        out.append(new)
+    return out
+
+
+# --- relative talk --------------------------------------------------------------------------------------------
+#: A step along the wall said as an order, not a side: studs are numbered from the left end, so "past", "after",
+#: "beyond", "further along" go right and "before", "back from" go left (``im.words.ORDER_WORDS`` reads them).
+ALONG_FORMS: dict[str, tuple[tuple[str, ...], ...]] = {
+    "right": (("past",), ("after",), ("beyond",), ("further", "along", "from"), ("along", "from"), ("on", "past"),
+              ("up", "past")),
+    "left": (("before",), ("back", "from"), ("short", "of")),
+}
+_SIDE_WORDS = frozenset({"left", "right", "left-hand", "right-hand"})
+_SPAN_FILLER = frozenset({"to", "the", "over", "further", "of", "from"})
+
+
+def _along(rng: random.Random, side: str) -> list[str]:
+    return list(rng.choice(ALONG_FORMS[side]))
+
+
+def relative_talk(ch: Chooser, sentences: Sentences) -> Sentences:
+    """A stud counted from another said as an order along the wall: "two to the right of 500104" -> "two past
+    500104", "one to the left of the last one" -> "the stud before the last one". The count keeps its tag; the
+    order words take the direction's tag (``St_loc1``); the words between go."""
+    rng = ch.rng
+    out: Sentences = []
+    for sentence in sentences:
+        new: Phrase = []
+        i = 0
+        while i < len(sentence):
+            tok = sentence[i]
+            if not (tok.is_word and tok.tag == "St_loc1"):
+                new.append(tok)
+                i += 1
+                continue
+            j = i
+            while j < len(sentence) and sentence[j].is_word and (sentence[j].tag == "St_loc1" or
+                                                                  (sentence[j].tag == "O" and sentence[j].word.lower() in ("studs", "stud"))):
+                j += 1
+            span = sentence[i:j]
+            k = j
+            while k < len(sentence) and sentence[k].is_word and sentence[k].tag == "O" \
+                    and sentence[k].word.lower() in ("of", "from", "the", "stud"):
+                k += 1
+            sides = {t.word.lower().removesuffix("-hand") for t in span if t.word.lower() in _SIDE_WORDS}
+            anchored = k < len(sentence) and sentence[k].is_word and sentence[k].tag == "St_loc2"
+            if len(sides) != 1 or not anchored or any(t.word.lower() in ("far", "from") for t in span) \
+                    or rng.random() < 0.3:
+                new += sentence[i:j]
+                i = j
+                continue
+            side = next(iter(sides))
+            kept = [t for t in span if t.word.lower() not in _SIDE_WORDS and t.word.lower() not in _SPAN_FILLER]
+            said_stud = bool(new) and new[-1].is_word and new[-1].word.lower() in ("stud", "post", "upright")
+            if said_stud and len(kept) == 1 and kept[0].word.lower() in ("one", "1", "just", "next"):
+                kept = []  # "on the stud after 500104", "the stud before the last one"
+            order = [Token(w, tok.tag, tok.coref) for w in _along(rng, side)]
+            between = sentence[j:k]
+            determiners = [t for t in between if t.word.lower() == "the"]
+            new += kept + order + determiners[-1:] + [t for t in between if t.word.lower() == "stud"][-1:]
+            i = k
+        out.append(new)
+    return out
 
 
 # --- plural sizes ---------------------------------------------------------------------------------------------
@@ -226,16 +373,16 @@ def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
 
 
 CHANNELS: dict[str, Channel] = {
-    "spoken_ids": spoken_ids, "shorthand": shorthand, "disfluency": disfluency, "asides": asides,
-    "plural_sizes": plural_sizes,
+    "stack_talk": stack_talk, "relative_talk": relative_talk, "spoken_ids": spoken_ids, "shorthand": shorthand,
+    "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes,
 }
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
-CHANNEL_RATES: dict[str, float] = {"spoken_ids": 0.15, "shorthand": 0.12, "disfluency": 0.15, "asides": 0.12,
-                                   "plural_sizes": 0.10}
+CHANNEL_RATES: dict[str, float] = {"stack_talk": 0.12, "relative_talk": 0.35, "spoken_ids": 0.15, "shorthand": 0.12,
+                                   "disfluency": 0.15, "asides": 0.15, "plural_sizes": 0.10}
 #: Held back whole: never in train, validation or test; the novel split uses it.
 HELD_BACK: tuple[str, ...] = ("shorthand",)
 #: Held back as a pair: each channel is met alone in training, never both at once.
-HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"),)
+HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"))
 
 
 def choose_channels(rng: random.Random, novel: bool) -> tuple[str, ...]:

@@ -279,6 +279,12 @@ class Pieces:
             return ch.say(F.STUD_ANCHOR_PREVIOUS)
         if ref.anchor in ("leftmost", "rightmost"):
             return ch.say(F.STUD_ANCHOR_END[ref.anchor])
+        if ref.anchor in self.stud_ids and ch.chance(0.2):  # "three left of the centre stud", "past the third stud"
+            index, middle = self.stud_ids.index(ref.anchor), len(self.stud_ids) // 2
+            if index == middle:
+                return ch.say(F.STUD_ANCHOR_POSITION["middle"])
+            side, nth = ("left", index + 1) if index < middle else ("right", len(self.stud_ids) - index)
+            return ch.say(F.STUD_ANCHOR_POSITION[side], ord=tagged(_ordinal(ch, nth), "St_loc2"))
         return ch.say(F.STUD_ANCHOR_ID, id=id_phrase(ch, ref.anchor, "St_loc2"))
 
     def count_after_anchor(self, ref: G.StudRef) -> Phrase:

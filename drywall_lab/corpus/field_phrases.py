@@ -87,7 +87,7 @@ CONTEXT_LINKS = ["so", "so", "and", "which means", "therefore", "hence", "that's
 #: Words that abandon what was just said: the final intention counts.
 CORRECTIONS = ["no", "no wait", "wait", "sorry", "actually", "actually no", "no no", "hold on", "oops",
                "my bad", "correction", "not that", "or no", "hang on", "scratch that", "I mean", "wait no",
-               "~make that", "~let me rephrase", "~rather"]
+               "on second thought", "hmm , no", "~make that", "~let me rephrase", "~rather"]
 CORRECTION_ENDS = ["", "", "instead", "not the other one", "sorry", "my mistake", "I meant", "I mean that"]
 #: A sentence that takes back the whole sentence before it ("... Correction: ...").
 CORRECTION_SENTENCES = ["correction", "sorry , I mean", "scratch that", "no wait", "let me say that again", "my bad",
@@ -370,6 +370,15 @@ STUD_ANCHOR_END = {
                  "the left/St_loc2 end/St_loc2", "the very/St_loc2 first/St_loc2 one", "the left/St_loc2 end/St_loc2 stud"],
     "rightmost": ["the very/St_loc2 last/St_loc2 stud", "the rightmost/St_loc2 stud", "the far/St_loc2 right/St_loc2 stud",
                   "the right/St_loc2 end/St_loc2", "the right/St_loc2 end/St_loc2 stud"],
+}
+#: An anchor stud named by where it is on the wall ({ord} a tagged ordinal): "three left of the centre stud".
+STUD_ANCHOR_POSITION = {
+    "middle": ["the middle/St_loc2 stud", "the centre/St_loc2 stud", "the stud in the middle/St_loc2",
+               "the center/St_loc2 one", "the middle/St_loc2 one"],
+    "left": ["the {ord} stud", "the {ord} one", "the {ord} stud from/St_loc2 the/St_loc2 left/St_loc2",
+             "the {ord} from/St_loc2 the/St_loc2 left/St_loc2"],
+    "right": ["the {ord} stud from/St_loc2 the/St_loc2 right/St_loc2", "the {ord} one from/St_loc2 the/St_loc2 right/St_loc2",
+              "the {ord} from/St_loc2 the/St_loc2 right/St_loc2 end/St_loc2"],
 }
 STUD_ANCHOR_PREVIOUS = [
     "the last/St_loc2 one", "the previous/St_loc2 stud", "where the last/St_loc2 one went",

@@ -4,8 +4,8 @@ Tagged words plus the building component tables and the action history become a
 robot command, or a refusal a worker understands, with a trace of every rule.
 
 - ``words``: reading numbers, ordinals, directions and anchors as people say them;
-- ``correction``: the final intention counts: tagged words that a change of mind or a negation takes back
-  ("the second from the right, no, the fourth") are read as ``O`` before any rule;
+- ``correction``: the final intention counts: tagged words that a change of mind takes back ("the second from
+  the right, no, the fourth") are read as ``O`` before any rule;
 - ``target``: which panel (Figs. 10 and 11); ``stud``: which stud (Fig. 12);
   ``placement``: how it goes on;
 - ``command``: ``RobotCommand``; ``history``: ``ActionHistory``;

@@ -1,11 +1,10 @@
 """From tagged words to a robot command or a refusal: the IM module (the paper's Fig. 1).
 
-``interpret`` reads the tags as the guidelines mean them (a word of punctuation, a stud
-spacing, a place in a stack, or a word a change of mind took back, is ``O``: ``TaggedInstruction``; the trace's
-``R0`` steps name what was read so), runs the target rules (Figs. 10-11), the destination rules
-(Fig. 12) and the placement rule, then checks that the robot can carry the command out (the
-panel can be picked; it fits on the wall). It changes nothing: ``InformationMapper``
-keeps the action history and records a command only when it is accepted.
+``interpret`` reads the tags as the guidelines mean them (a place in a stack, or a word a change of mind took
+back, is ``O``: ``TaggedInstruction``; the trace's ``R0`` steps name what was read so), runs the target rules
+(Figs. 10-11), the destination rules (Fig. 12) and the placement rule, then checks that the robot can carry the
+command out (the panel can be picked; it fits on the wall). It changes nothing: ``InformationMapper`` keeps the
+action history and records a command only when it is accepted.
 """
 from __future__ import annotations
 
@@ -16,7 +15,6 @@ from drywall_lab.errors import Refusal
 from drywall_lab.im import words as W
 from drywall_lab.im.command import RobotCommand
 from drywall_lab.im.context import MappingContext
-from drywall_lab.im.correction import is_negation
 from drywall_lab.im.history import ActionHistory
 from drywall_lab.im.placement import resolve_placement
 from drywall_lab.im.stud import resolve_stud
@@ -76,14 +74,13 @@ def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory 
         trace.add("target", "empty instruction", True, conclusion=f"refused (undetermined): {message}")
         result.refusal = Refusal("undetermined", message)
         return result
-    if ti.spacing:
-        trace.add("reading", "R0 stud spacing", True,
-                  conclusion=f"{W.quote([ti.words[i] for i in ti.spacing])} is the stud spacing (how the wall is "
-                             "framed), not the placement: read as O")
     if ti.in_stack:
         trace.add("reading", "R0 place in a stack", True,
-                  conclusion=f"{W.quote([ti.words[i] for i in ti.in_stack])} names a place in a stack or what is "
-                             "left in it, not a row on the wall or a side: read as O")
+                  conclusion=f"{W.quote([ti.words[i] for i in ti.in_stack])} names a place in a stack, not a row "
+                             "on the wall: read as O")
+    if ti.said_when:
+        trace.add("reading", "R0 time word", True,
+                  conclusion=f"{W.quote([ti.words[i] for i in ti.said_when])} says when, not which side: read as O")
     if ti.taken_back:
         trace.add("reading", "R0 final intention", True, conclusion=_taken_back_text(ti))
     ctx = MappingContext(site, history.state, history.last)
@@ -103,13 +100,11 @@ def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory 
 
 
 def _taken_back_text(ti: TaggedInstruction) -> str:
-    """ "'second from the right' taken back by 'no'; 'left' ruled out by 'not'": what a change of mind took back
-    (guidelines 4.7)."""
+    """ "'second from the right' taken back by 'no'": what a change of mind took back (guidelines 4.7)."""
     by_cue: dict[str, list[str]] = {}
     for i, cue in ti.taken_back.items():
         by_cue.setdefault(cue, []).append(ti.words[i])
-    return "; ".join(f"{W.quote(said)} {'ruled out' if is_negation(cue) else 'taken back'} by '{cue}'"
-                     for cue, said in by_cue.items()) + ": only the final intention counts, read as O"
+    return "; ".join(f"{W.quote(said)} taken back by '{cue}'" for cue, said in by_cue.items()) + ": only the final intention counts, read as O"
 
 
 def _check(rule: str, trace: Trace, check: Callable[[], T], conclusion: Callable[[T], str]) -> T:

@@ -16,9 +16,9 @@ Three rules, tried in order:
 3. ``St_loc1`` + ``St_loc2``: ``St_loc1`` is a direction with an optional count
    (default 1; "zero", "0" and "same" are 0: the anchor itself), ``St_loc2`` the
    anchor: a stud id, the leftmost or rightmost stud, or the previous stud (the stud
-   of the last accepted command). "second to the left of 500109" is 500107. Two
-   counts, or an anchor that is none of these ("the fourth", "the third from the
-   left"), are ``undetermined``.
+   of the last accepted command), or a stud named by where it is on the wall as in rule 2
+   ("three left of the centre stud", "one past the third stud"). "second to the left of 500109"
+   is 500107. Two counts, or an anchor that names no stud, are ``undetermined``.
 """
 from __future__ import annotations
 
@@ -76,7 +76,6 @@ def stud_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | N
     """Rule 2 (Fig. 12): ``St_loc1`` alone names a stud by where it is on the wall."""
     if not ti.has("St_loc1") or ti.has("St_loc2"):
         return None
-    ti.require_count_tagged("St_loc1", "stud")
     said = ti.words_with("St_loc1")
     if W.says_same(said) and not (W.counts_in(said) or W.sides_in(said) or W.says_middle(said)):
         quoted = W.quote(ti.phrase("St_loc1"))  # "the same stud", "where the last one went": the previous stud
@@ -109,26 +108,18 @@ def _anchor(ti: TaggedInstruction, ctx: MappingContext) -> tuple[Stud, str]:
         last = ctx.require_last(quoted)
         stud = ctx.site.stud(last["stud_id"])
         return stud, f"the previous stud {stud.stud_id}"
-    counts, sides = W.counts_in(said), W.sides_in(said)
-    if (counts not in ([], [1]) or len(sides) > 1 or W.says_middle(said)
-            or (W.says_last(said) and (counts or sides == {"left"}))):
-        raise Refusal("undetermined", f"{quoted} is not a stud to count from: name it by its id, as the leftmost "
-                                      "or rightmost stud, or as the previous one.")
-    if sides:
-        side = next(iter(sides))
-        return ctx.site.studs[0 if side == "left" else -1], f"the {side}most stud"
-    if counts == [1]:
-        return ctx.site.studs[0], "the first (leftmost) stud"
-    if W.says_last(said) and W.says_end(said):
-        return ctx.site.studs[-1], "the last (rightmost) stud"
-    raise Refusal("undetermined", f"{quoted} does not say which stud the position is counted from.")
+    position = W.line_position(said, quoted, len(ctx.site.studs), "stud")  # "the middle stud", "the third stud"
+    if position is None:
+        raise Refusal("undetermined", f"{quoted} does not say which stud the position is counted from.")
+    index, how = position
+    stud = _stud_at(ctx, index, quoted)
+    return stud, f"{quoted} ({how}, stud {stud.stud_id})"
 
 
 def stud_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
     """Rule 3 (Fig. 12): the stud ``count`` places left or right of an anchor stud ("zero", "0", "same": 0 places)."""
     if not (ti.has("St_loc1") and ti.has("St_loc2")):
         return None
-    ti.require_count_tagged("St_loc1", "stud")
     direction_words = ti.words_with("St_loc1")
     quoted = W.quote(direction_words)
     count = W.one_count(direction_words, quoted, "stud")

@@ -5,8 +5,7 @@ Five rules, tried in order; the first that applies decides:
 1. ``ID_wall``: that panel.
 2. ``width`` / ``length`` numbers (feet): the stack whose size matches; "A by B" is
    width A, length B; tried turned when nothing matches as said; a single number
-   that fits two sizes is ambiguous. A "one" (or a texted "1") right after a size is the
-   panel ("a 2 ft wide 1"), and a number before a whole "A by B" counts panels ("three 2 by 8s").
+   that fits two sizes is ambiguous.
 3. ``dim``: a size word ("full-size", "standard", "regular size") is the standard 4 x 8; a
    back-reference ("same as the previous one") is the size of the last installed panel. A
    lone "size" or "sized" names no size: the rule does not apply; nor does a word that only
@@ -75,14 +74,11 @@ def target_by_id(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
 
 # --- rule 2 ---------------------------------------------------------------------------
 def _said_size(ti: TaggedInstruction) -> tuple[float | None, float | None] | None:
-    """(width, length) as said; a one-word size ("4x8") or two numbers under one tag are "A by B". A "one" (or a
-    texted "1") right after a size is the panel, not a number ("a 2 ft wide 1"; ``words.is_noun_one``), and a
-    number before a whole "A by B" counts panels ("three 2 by 8s"; ``_by_pair``): only the pair is the size."""
+    """(width, length) as said; a one-word size ("4x8") or two numbers under one tag are "A by B"."""
     widths: list[int] = []
     lengths: list[int] = []
-    pair = _by_pair(ti)
-    for i, (word, tag) in enumerate(zip(ti.words, ti.tags)):
-        if tag not in SIZE_TAGS or W.is_noun_one(ti.words, i) or (pair is not None and i not in pair):
+    for word, tag in zip(ti.words, ti.tags):
+        if tag not in SIZE_TAGS:
             continue
         numbers = W.numbers_in(word)
         if len(numbers) >= 2:
@@ -99,21 +95,6 @@ def _said_size(ti: TaggedInstruction) -> tuple[float | None, float | None] | Non
     if len(widths) > 1 or len(lengths) > 1:
         raise Refusal("ambiguous_size", f"{W.quote(ti.phrase(*SIZE_TAGS))} gives more than one size: which panel?")
     return (float(widths[0]) if widths else None), (float(lengths[0]) if lengths else None)
-
-
-_BY = frozenset({"by", "x", "times"})
-
-
-def _by_pair(ti: TaggedInstruction) -> tuple[int, int] | None:
-    """The positions of a whole "A by B" whose two numbers are tagged as a size ("2/width by 8/length"), when
-    other size-tagged numbers stand beside it ("three/width 2/width by 8/length"); None otherwise, and when two
-    different pairs are said (then the size is ambiguous, as said)."""
-    tagged = [i for i, t in enumerate(ti.tags) if t in SIZE_TAGS and W.numbers_in(ti.words[i])]
-    pairs = {(i, j) for i in tagged for j in tagged
-             if j == i + 2 and W.normalise(ti.words[i + 1]) in _BY and len(W.numbers_in(ti.words[i])) == 1}
-    if len(pairs) != 1 or len(tagged) <= 2:
-        return None
-    return next(iter(pairs))
 
 
 def target_by_size(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
@@ -193,7 +174,6 @@ def target_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision |
     """Rule 4 (Fig. 11): ``Dw_loc1`` alone names a stack by where it is."""
     if not ti.has("Dw_loc1") or ti.has("Dw_loc2"):
         return None
-    ti.require_count_tagged("Dw_loc1", "stack")
     position = W.line_position(ti.words_with("Dw_loc1"), W.quote(ti.span("Dw_loc1")), len(STACK_NAMES), "stack")
     if position is None:
         return None
@@ -208,7 +188,6 @@ def target_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> D
     """Rule 5 (Fig. 11): the stack ``count`` places left or right of an anchor panel's stack."""
     if not (ti.has("Dw_loc1") and ti.has("Dw_loc2")):
         return None
-    ti.require_count_tagged("Dw_loc1", "stack")
     direction_words = ti.words_with("Dw_loc1")
     anchor_words = ti.words_with("Dw_loc2")
     quoted = W.quote(direction_words)

@@ -22,28 +22,23 @@ class TaggedInstruction:
     """An instruction's words with one tag each, as the NLU module gives them.
 
     The co-reference tags ``Trg`` and ``Dst`` (the paper's Table 5 variant) are
-    accepted and read as ``O``: the rules use only the 13 tags of spec section 2. A word
-    with neither a letter nor a digit (a bullet ``•``, a dash ``—``) is punctuation, which
-    carries no information (annotation guidelines 1): its tag is read as ``O`` whatever the
-    tagger said. So are the tags of words a change of mind takes back (``correction.taken_back``:
-    "the second from the right, no, the fourth from the right"): only the final intention counts
-    (guidelines 4.7). ``taken_back`` keeps which words those were, and what took each back. The
-    words of a stud spacing ("16 in on centre", ``words.stud_spacing``; kept in ``spacing``) are
-    read as ``O`` too: they say how the wall is framed, never the centre-line placement; and so are
-    the placement tags of a place in a stack ("the 2x8 off the top of the middle pile", ``words.stack_place``;
-    kept in ``in_stack``): it says which panel, or why, never the row; and the tag of a "left" that says what
-    remains ("the pile has one left", ``words.what_is_left``), never a side.
+    accepted and read as ``O``: the rules use only the 13 tags of spec section 2. The tags of
+    words a change of mind takes back (``correction.taken_back``: "the second from the right, no,
+    the fourth from the right") are read as ``O``: only the final intention counts (guidelines 4.7).
+    ``taken_back`` keeps which words those were, and what took each back. The placement tags of a
+    place in a stack ("the 2x8 off the top of the middle pile", ``words.stack_place``; kept in
+    ``in_stack``) are read as ``O`` too: it says which panel, or why, never the row; so is a "right" that says
+    when ("right now", ``words.time_words``; kept in ``said_when``), never a side.
     """
 
     words: tuple[str, ...]
     tags: tuple[str, ...]
-    #: The positions whose tags a correction or a negation took back, each with the words that did.
+    #: The positions whose tags a correction took back, each with the words that did.
     taken_back: dict[int, str] = field(init=False, repr=False, compare=False)
-    #: The positions of a stud spacing phrase whose tags were read as ``O`` (empty when none of them was tagged).
-    spacing: tuple[int, ...] = field(init=False, repr=False, compare=False)
-    #: The positions of a place in a stack ("off the top of the middle pile") whose placement tags were read as ``O``,
-    #: and of a "left" that says what remains in it ("the pile has one left", ``words.what_is_left``).
+    #: The positions of a place in a stack ("off the top of the middle pile") whose placement tags were read as ``O``.
     in_stack: tuple[int, ...] = field(init=False, repr=False, compare=False)
+    #: The positions of a "right" that says when ("right now", ``words.time_words``), whose tags were read as ``O``.
+    said_when: tuple[int, ...] = field(init=False, repr=False, compare=False)
     #: Where each tag stands (tag -> word positions): the rules ask for it thousands of times per decision.
     _positions: dict[str, list[int]] = field(init=False, repr=False, compare=False)
 
@@ -54,22 +49,16 @@ class TaggedInstruction:
         unknown = sorted(set(tags) - set(COREF_TAGS))
         if unknown:
             raise ValueError(f"unknown tag(s) {', '.join(unknown)}; the tags are {', '.join(COREF_TAGS)}")
-        if any(t != "O" and W.is_punctuation(w) for w, t in zip(words, tags)):
-            tags = tuple("O" if W.is_punctuation(w) else t for w, t in zip(words, tags))
-        spacing = tuple(W.stud_spacing(words))
-        spacing = spacing if any(tags[i] not in W.UNTAGGED for i in spacing) else ()
-        if spacing:
-            tags = tuple("O" if i in spacing else t for i, t in enumerate(tags))
         in_stack = tuple(i for i in W.stack_place(words) if tags[i] in PLACEMENT_TAGS)
-        in_stack += tuple(i for i in W.what_is_left(words) if tags[i] != "O")
-        if in_stack:
-            tags = tuple("O" if i in in_stack else t for i, t in enumerate(tags))
+        said_when = tuple(i for i in W.time_words(words) if tags[i] != "O")
+        if in_stack or said_when:
+            tags = tuple("O" if i in in_stack or i in said_when else t for i, t in enumerate(tags))
         back = taken_back(words, tags)
         if back:
             tags = tuple("O" if i in back else t for i, t in enumerate(tags))
         object.__setattr__(self, "taken_back", back)
-        object.__setattr__(self, "spacing", spacing)
         object.__setattr__(self, "in_stack", in_stack)
+        object.__setattr__(self, "said_when", said_when)
         object.__setattr__(self, "words", words)
         object.__setattr__(self, "tags", tags)
         positions: dict[str, list[int]] = {}
@@ -94,17 +83,6 @@ class TaggedInstruction:
         """The words from the first to the last word carrying any of ``tags``: ``"third stud left"``."""
         idx = self.indices(*tags)
         return list(self.words[idx[0]:idx[-1] + 1]) if idx else []
-
-    def require_count_tagged(self, tag: str, what: str) -> None:
-        """Refuse (``undetermined``) a position whose count was left untagged ("zero studs to/St_loc1 ...")."""
-        i = W.untagged_count_before(self.words, self.tags, tag)
-        if i is not None:
-            end = self.indices(tag)[0]
-            while end + 1 < len(self.tags) and self.tags[end + 1] == tag:
-                end += 1
-            quoted = W.quote(self.words[i:end + 1])
-            raise Refusal("undetermined", f"In {quoted} I could not tell whether '{self.words[i]}' is the count: "
-                                          f"which {what}?")
 
     def phrase(self, *tags: str) -> list[str]:
         """The tagged words with the few words around them that make them readable, to quote back.

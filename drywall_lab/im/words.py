@@ -37,13 +37,13 @@ _POSSESSIVE_ID = re.compile(r"^(\d{4,})['’]s$")
 
 LEFT_WORDS = frozenset({"left", "leftmost", "left-most", "lefthand", "left-hand"})
 RIGHT_WORDS = frozenset({"right", "rightmost", "right-most", "righthand", "right-hand"})
+#: A step along the wall said as an order: the studs (and stacks) are numbered from the left, so "past", "after",
+#: "beyond", "further along" go right and "before", "back from", "short of" go left ("two past 500104").
+ORDER_WORDS: dict[str, str] = {"past": "right", "after": "right", "beyond": "right", "along": "right",
+                               "before": "left", "back": "left", "short": "left"}
 MIDDLE_WORDS = frozenset({"middle", "center", "centre", "central", "halfway", "mid"})
-CENTRE_WORDS = frozenset({"center", "centre"})
-#: Words that say the centre-line placement (``Vr_md``): every ``Vr_md`` phrase of the guidelines has one.
-CENTRE_LINE_WORDS = MIDDLE_WORDS | {"centred", "centered", "centreline", "centerline", "c-l", "half", "split",
-                                    "splitting"}
 #: Words that say a panel lies, but that stay ``O`` (annotation guidelines 4.7: "sideways", "lay it down",
-#: "horizontal(ly)" before a row word): a reading with no placement tag puts the panel upright, and these say not.
+#: "horizontal(ly)" before a row word): beside one, an upright word says nothing (``upright_words``).
 LYING_WORDS = frozenset({"horizontal", "horizontally", "sideways", "landscape", "lying", "lies", "lay", "lays",
                          "laid"})
 #: Words that say a panel stands ("upright", "stood up on its end"), also ``O``: the default placement.
@@ -80,9 +80,6 @@ STANDARD_SIZE_WORDS = frozenset({"full-size", "full-sized", "fullsize", "full", 
 SIZE_WORDS = frozenset({"size", "sized", "sizes"})
 #: Words that make "first"/"last" mean the end of the wall, not the last action ("the very last stud").
 END_WORDS = frozenset({"very", "far", "most", "furthest", "farthest", "end"})
-#: Generic words that may stand between a count and its direction ("two studs to the right", "one panel over").
-COUNTED_NOUNS = frozenset({"stud", "studs", "panel", "panels", "stack", "stacks", "sheet", "sheets", "board",
-                           "boards", "place", "places", "over", "spot", "spots"})
 #: Tags that carry no information for the rules (spec section 2; ``Trg``/``Dst`` are read as ``O``).
 UNTAGGED = frozenset({"O", "Trg", "Dst"})
 #: Words of a step from another stud or stack ("one over to the right", "just to the left", "two places"):
@@ -99,11 +96,6 @@ SPELLINGS: dict[str, str] = {
 #: Single digits as they are read out one by one ("five oh oh one oh three"): a spoken id.
 _DIGIT_WORDS: dict[str, str] = {"zero": "0", "oh": "0", "o": "0", "one": "1", "two": "2", "three": "3",
                                 "four": "4", "five": "5", "six": "6", "seven": "7", "eight": "8", "nine": "9"}
-
-
-def is_punctuation(word: str) -> bool:
-    """A word with neither a letter nor a digit (``•``, ``—``, ``->``): punctuation, never tagged."""
-    return not any(c.isalnum() for c in word)
 
 
 @lru_cache(maxsize=8192)
@@ -160,37 +152,6 @@ def _counts(words: Sequence[str]) -> list[tuple[int, bool]]:
     return out
 
 
-#: The words a size phrase ends with ("2 ft wide", "an 8 foot", "a six-footer").
-_SIZE_ENDS = frozenset({"wide", "long", "tall", "high", "across", "ft", "foot", "feet", "footer"})
-
-
-def is_noun_one(words: Sequence[str], i: int) -> bool:
-    """Whether ``words[i]`` is "one" (or "1", as a text message writes it) standing for the panel right after a
-    size ("a 2 ft wide 1", "the 4x8 one"): the noun, never a size of 1 ft.
-
-    >>> is_noun_one(["a", "2", "ft", "wide", "1"], 4), is_noun_one(["the", "4x8", "one"], 2), is_noun_one(["1", "by", "2"], 0)
-    (True, True, False)
-    """
-    if i <= 0 or normalise(words[i]) not in ("one", "1"):
-        return False
-    before = normalise(words[i - 1])
-    return before in _SIZE_ENDS or before.endswith("-footer") or len(numbers_in(words[i - 1])) >= 2
-
-
-def says_a_size(words: Sequence[str]) -> bool:
-    """Whether the words say a panel size "A by B", in one word or three ("4x8", "four-by-eight", "2 by 8"), whatever
-    their tags: a size the tagger missed is still a panel the worker named.
-
-    >>> says_a_size("lay one of the four by eight sheets".split()), says_a_size(["the", "4x8"]), says_a_size(["4", "studs"])
-    (True, True, False)
-    """
-    norm = [normalise(w) for w in words]
-    if any(len(numbers_in(w)) >= 2 and not w.isdigit() for w in norm):
-        return True
-    return any(norm[i + 1] in ("by", "x") and len(numbers_in(norm[i])) == 1 and len(numbers_in(norm[i + 2])) == 1
-               for i in range(len(norm) - 2))
-
-
 def counts_in(words: Sequence[str]) -> list[int]:
     """Every count said, in order: ordinals and numbers ("second", "two", "2nd", "zero", "0").
 
@@ -201,33 +162,6 @@ def counts_in(words: Sequence[str]) -> list[int]:
     ([2], [], [2])
     """
     return [n for n, _ in _counts(words)]
-
-
-def untagged_count_before(words: Sequence[str], tags: Sequence[str], tag: str) -> int | None:
-    """The index of a count left untagged right before the first ``tag`` word; None if there is none.
-
-    "zero studs to/St_loc1 the/St_loc1 right/St_loc1": the position's own count ("zero") was not tagged,
-    so reading the tagged words alone would drop it. Only a position with no count of its own and a
-    direction ("left", "right") or a step word ("over", "places") can be missing one; generic nouns
-    between are skipped; "one" is not a count here ("the one to the right"), nor is an id. A tagged position
-    that starts with "one" right after an untagged ordinal ("3rd one/St_loc1 to/St_loc1 the left") has lost its
-    count too: "one" is the ordinal's noun, as ``counts_in`` reads it when both are tagged.
-    """
-    first = next((i for i, t in enumerate(tags) if t == tag), None)
-    if first is None:
-        return None
-    if (normalise(words[first]) == "one" and first > 0 and tags[first - 1] in UNTAGGED
-            and ordinal_of(words[first - 1]) is not None):
-        return first - 1  # "3rd one/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1": 'one' is the ordinal's noun
-    said = [w for w, t in zip(words, tags) if t == tag]
-    if counts_in(said) or not (says_relative(said) or any(normalise(w) in ("left", "right") for w in said)):
-        return None
-    i = first - 1
-    while i >= 0 and tags[i] in UNTAGGED and normalise(words[i]) in COUNTED_NOUNS:
-        i -= 1
-    if i < 0 or tags[i] not in UNTAGGED or normalise(words[i]) == "one" or ids_in([words[i]]):
-        return None
-    return i if ordinal_of(words[i]) is not None or len(numbers_in(words[i])) == 1 else None
 
 
 def one_count(words: Sequence[str], quoted: str, what: str) -> int | None:
@@ -255,8 +189,9 @@ def sides_in(words: Iterable[str]) -> set[str]:
 
 
 def direction_of(words: Sequence[str], quoted: str, what: str) -> str:
-    """The one direction ("left" or "right") of a relative position; ``undetermined`` if none or both."""
-    sides = sides_in(words)
+    """The one direction ("left" or "right") of a relative position, said as a side or as an order along the wall
+    (``ORDER_WORDS``: "two past 500104" is two to the right); ``undetermined`` if none or both."""
+    sides = sides_in(words) | {ORDER_WORDS[w] for w in map(normalise, words) if w in ORDER_WORDS}
     if len(sides) != 1:
         problem = "names both left and right" if sides else "does not say left or right"
         raise Refusal("undetermined", f"{quoted} {problem}: which {what}?")
@@ -267,87 +202,9 @@ def says_middle(words: Iterable[str]) -> bool:
     return any(normalise(w) in MIDDLE_WORDS for w in words)
 
 
-def _with_pieces(words: Iterable[str]) -> set[str]:
-    """The normalised words and the pieces of their hyphenated compounds: "bottom-row" gives "bottom-row", "bottom"
-    and "row"."""
-    out = set()
-    for word in words:
-        w = normalise(word)
-        out.add(w)
-        out.update(piece for piece in w.split("-") if piece)
-    return out
-
-
-def says_centre_line(words: Iterable[str]) -> bool:
-    """ "centre", "c-l", "centre-line", "split the stud": a word that can carry ``Vr_md``; "the left line" alone cannot."""
-    return not CENTRE_LINE_WORDS.isdisjoint(_with_pieces(words))
-
-
-#: The row nouns that follow a row word in a row phrase ("top row", "bottom course", "bottom-row"; guidelines 4.7).
-ROW_NOUNS = frozenset({"row", "course", "half", "part", "level", "plate", "tier", "run"})
-
-
-def row_phrases(words: Sequence[str]) -> list[tuple[int, ...]]:
-    """The row phrases of the words: a row word with a row noun right after it ("top row", "the bottom course") or in
-    one hyphenated word ("bottom-row"), each as its positions. The guidelines tag such a phrase as the placement,
-    always.
-
-    >>> row_phrases("the next bottom-row sheet at 500106".split()), row_phrases("top row over it".split())
-    ([(2,)], [(0, 1)])
-    """
-    norm = [normalise(w) for w in words]
-    rows = TOP_ROW_WORDS | BOTTOM_ROW_WORDS
-    out: list[tuple[int, ...]] = []
-    for i, w in enumerate(norm):
-        pieces = [p for p in w.split("-") if p]
-        if len(pieces) > 1 and pieces[0] in rows and pieces[1] in ROW_NOUNS:
-            out.append((i,))
-        elif w in rows and i + 1 < len(norm) and norm[i + 1] in ROW_NOUNS:
-            out.append((i, i + 1))
-    return out
-
-
-#: Counts before "left" that say what remains ("has one left", "only two left"), not a side.
-_REMAINING_BEFORE = frozenset({"has", "have", "had", "got", "only", "just", "is", "are", "there's", "theres"})
-
-
-def what_is_left(words: Sequence[str]) -> list[int]:
-    """Where "left" says what remains ("the middle pile has one left", "only two left in it"), not the left side: the
-    position of "left" right after a count that follows "has", "only", ... and before no "of", "from", ... ("is one
-    left of 500104 free?" is a direction; guidelines 4.7: ``O``).
-
-    >>> what_is_left("since the middle pile has one left , use it".split()), what_is_left("the one left of it".split())
-    ([6], [])
-    """
-    norm = [normalise(w) for w in words]
-    return [i for i in range(2, len(norm)) if norm[i] == "left" and (numbers_in(words[i - 1]) or norm[i - 1] in
-            ("none", "nothing", "few", "some")) and norm[i - 2] in _REMAINING_BEFORE
-            and (i + 1 == len(norm) or norm[i + 1] not in _DIRECTION_AFTER)]
-
-
-#: Words after "left" that make it a direction ("is one left of 500104 free?"), never what remains.
-_DIRECTION_AFTER = frozenset({"of", "from", "to", "off", "side", "hand", "end"})
-
-
-#: A lying word says how *this* panel goes only near the instruction's own words: at most this many words from a
-#: tagged word ("the 4 by 6 lying down at 500100"), not in a story before it.
+#: An upright word says how *this* panel goes only near the instruction's own words: at most this many words from a
+#: tagged word ("the 4x6 stands on 500102"), not in a story before it.
 LYING_REACH = 4
-
-
-def lying_words(words: Sequence[str], tags: Sequence[str] | None = None) -> list[int]:
-    """Where the words say the panel lies ("lying down", "sideways", "horizontally"), unless a word takes something
-    back or denies it ("not sideways", "no wait"; the lying word may be the abandoned one) or a word says it stands
-    ("we did the last wall sideways; this one upright"): then none is given. With ``tags``, a lying word more than
-    ``LYING_REACH`` words from every tagged word says nothing of this panel: it is a story or a reason ("on the last
-    job we did every wall sideways anyway the 2x8 from the left ...").
-
-    >>> lying_words("the 4 by 6 lying down at 500100".split()), lying_words("not sideways , upright".split())
-    ([4], [])
-    """
-    said = [normalise(w) for w in words]
-    if any(w in TAKE_BACK_WORDS or w in UPRIGHT_WORDS for w in said):
-        return []
-    return _near_tagged([i for i, w in enumerate(said) if w in LYING_WORDS], tags)
 
 
 def _near_tagged(positions: list[int], tags: Sequence[str] | None) -> list[int]:
@@ -358,14 +215,11 @@ def _near_tagged(positions: list[int], tags: Sequence[str] | None) -> list[int]:
     return [i for i in positions if any(abs(i - j) <= LYING_REACH for j in tagged)]
 
 
-#: Words before a noun: "the upright", "each upright" name a stud (trade talk), not how the panel stands.
-_DETERMINERS = frozenset({"the", "a", "an", "that", "this", "each", "every", "next", "first", "last", "same", "one"})
-
-
 def upright_words(words: Sequence[str], tags: Sequence[str] | None = None) -> list[int]:
-    """Where the words say the panel stands ("standing up", "upright", ``UPRIGHT_WORDS``), as ``lying_words`` reads
-    lying words: none when a word takes something back or says it lies; with ``tags``, only those within
-    ``LYING_REACH`` words of a tagged word. After "the", "each", ... it is a noun: "at the upright" is the stud.
+    """Where the words say the panel stands ("standing up", "upright", ``UPRIGHT_WORDS``): none when a word takes
+    something back or denies it ("not upright", "no wait"; the upright word may be the abandoned one) or says it lies
+    (``LYING_WORDS``); with ``tags``, only those within ``LYING_REACH`` words of a tagged word: one further away is a
+    story or a reason ("on the last job we did every wall upright anyway the 2x8 from the left ...").
 
     >>> upright_words("the 4x6 stands on 500102".split()), upright_words("lying down , not upright".split())
     ([2], [])
@@ -373,45 +227,50 @@ def upright_words(words: Sequence[str], tags: Sequence[str] | None = None) -> li
     said = [normalise(w) for w in words]
     if any(w in TAKE_BACK_WORDS or w in LYING_WORDS for w in said):
         return []
-    return _near_tagged([i for i, w in enumerate(said)
-                         if w in UPRIGHT_WORDS and not (i and said[i - 1] in _DETERMINERS)], tags)
+    return _near_tagged([i for i, w in enumerate(said) if w in UPRIGHT_WORDS], tags)
 
 
-#: The stud spacings of framing (inches on centre): "16 in on centre", "sixteen-inch centres", "24 o.c.".
-SPACING_INCHES = frozenset({12, 16, 24})
-_SPACING_UNITS = frozenset({"in", "inch", "inches"})
-_SPACING_CENTRES = frozenset({"centres", "centers", "o.c", "oc"})
-_SPACING_NUMBERS = [[n] for n in sorted(SPACING_INCHES)]
+#: Words after "right" that make it a time, not a side ("right now", "right away"; guidelines: time words are ``O``).
+TIME_AFTER_RIGHT = frozenset({"now", "away"})
 
 
-def stud_spacing(words: Sequence[str]) -> list[int]:
-    """Where the words give the stud spacing ("the studs are 16 in on centre", spec section 1; "sixteen-inch centres",
-    "24 o.c."): the positions of the spacing phrase, which says how the wall is framed and never the centre-line
-    placement (guidelines 4.7). Only the framing spacings (``SPACING_INCHES``) count, never a panel size or an id:
-    "the 4 by 8 on centre" is a placement.
+def time_words(words: Sequence[str]) -> list[int]:
+    """The positions of a "right" that says when ("... from the stud you used last, right now"), never a side.
 
-    >>> stud_spacing("walls are sixteen on centre , 500104".split()), stud_spacing("the 4 by 8 on centre".split())
-    ([2, 3, 4], [])
+    >>> time_words("third to the right , right now".split()), time_words("right of 500104".split())
+    ([5], [])
     """
     norm = [normalise(w) for w in words]
-    if CENTRE_WORDS.isdisjoint(norm) and _SPACING_CENTRES.isdisjoint(norm):
-        return []  # no centre said at all: the usual case, decided without reading a number
-    out: list[int] = []
-    for i, w in enumerate(norm):
-        if numbers_in(words[i]) not in _SPACING_NUMBERS and w not in ("twenty-four", "twentyfour"):
-            continue
-        j = i + 1
-        while j < len(norm) and norm[j] in _SPACING_UNITS:
-            j += 1
-        if j < len(norm) and norm[j] in _SPACING_CENTRES:
-            out.extend(range(i, j + 1))
-        elif j + 1 < len(norm) and norm[j] == "on" and norm[j + 1] in CENTRE_WORDS | _SPACING_CENTRES:
-            out.extend(range(i, j + 2))
-    return out
+    return [i for i in range(len(norm) - 1) if norm[i] == "right" and norm[i + 1] in TIME_AFTER_RIGHT]
 
 
 #: The nouns of a stack (field corpus ``STACK_NOUNS``, "stack", "pile", ...): "the top of the left stack" is a place in it.
 STACK_WORDS = frozenset({"stack", "stacks", "pile", "piles", "pallet", "bunch", "lot"})
+
+
+#: The panel's nouns, and the words that say its stack's uppermost sheet ("the top sheet", "the topmost 2x8").
+PANEL_WORDS = frozenset({"sheet", "panel", "board", "drywall", "piece", "one", "rock", "sheetrock", "plasterboard",
+                         "wallboard", "gwb"})
+UPPERMOST_WORDS = frozenset({"top", "topmost", "uppermost"})
+
+
+#: Words before "the top" that make it a row ("across the top", "at the top"), and after "top" ("top row").
+_ROW_LEADS = frozenset({"across", "along", "at", "up", "in", "into", "to", "onto", "on", "near", "by"})
+_ROW_NEXT = frozenset({"row", "course", "position", "half", "part", "level", "plate", "tier", "run", "edge", "line"})
+
+
+def _names_the_uppermost(norm: Sequence[str], i: int) -> bool:
+    """Whether ``norm[i]`` is a top word that names the uppermost sheet of a stack: before a panel's noun or size,
+    after a stack's noun ("pile top sheet", not "the mid bunch top") or after a determiner not led by a row's
+    preposition ("the top 2x8", not "across the top sheetrock")."""
+    w, before, after = norm[i], norm[i - 1], norm[i + 1]
+    if w not in UPPERMOST_WORDS or after in _ROW_NEXT:
+        return False
+    size = len(numbers_in(after)) >= 2 and ("x" in after or "by" in after)
+    if before in STACK_WORDS:
+        return after in PANEL_WORDS or size  # not "the mid bunch, top": a row
+    led = not _ROW_LEADS.isdisjoint(norm[max(0, i - 4):i - 1])  # "across (okay) the top sheet of rock"
+    return before in ("the", "a", "that", "this") and not led and (after in PANEL_WORDS or size)
 
 
 def stack_place(words: Sequence[str]) -> list[int]:
@@ -419,13 +278,19 @@ def stack_place(words: Sequence[str]) -> list[int]:
     at the bottom of the stack is cracked"): the positions of the row word, ``of`` and the words up to the stack's noun,
     which say which panel is meant or why, never the placement (guidelines 4.7).
 
+    The uppermost sheet named as such is a place in its stack too: a top word right before the panel's noun or
+    size, or right after a stack's noun ("the top 2x8", "the top sheet", "right pile top sheet"): the sheet on
+    top is the one the robot takes, never the top row (which is "the top row", "up top", "across the top").
+
     >>> stack_place("the one at the bottom of the stack is cracked".split()), stack_place("the bottom of the wall".split())
     ([4, 5, 6, 7], [])
+    >>> stack_place("left pile top sheet to 500107".split()), stack_place("the top 2x8 in the top row".split())
+    ([2], [1])
     """
     norm = [normalise(w) for w in words]
+    out = [i for i in range(1, len(norm) - 1) if _names_the_uppermost(norm, i)]
     if STACK_WORDS.isdisjoint(norm):
-        return []
-    out: list[int] = []
+        return out
     for i, w in enumerate(norm[:-2]):
         if w not in TOP_ROW_WORDS | BOTTOM_ROW_WORDS or norm[i + 1] != "of":
             continue
@@ -434,21 +299,6 @@ def stack_place(words: Sequence[str]) -> list[int]:
                 out.extend(range(i, j + 1))
                 break
     return out
-
-
-def says_placement(tag: str, words: Iterable[str]) -> bool:
-    """Whether words tagged with the placement tag ``tag`` can say that placement: a centre word for ``Vr_md``
-    ("the left line" cannot), a top or bottom row word for ``Hr_top`` or ``Hr_btm`` ("row" alone, "lol" cannot).
-
-    >>> says_placement("Hr_btm", ["bottom", "row"]), says_placement("Hr_btm", ["lol"]), says_placement("Vr_md", ["line"])
-    (True, False, False)
-    >>> says_placement("Hr_btm", ["bottom-row"]), says_placement("Vr_md", ["centre-line"]), says_placement("Hr_top", ["top-row"])
-    (True, True, True)
-    """
-    if tag == "Vr_md":
-        return says_centre_line(words)
-    said = TOP_ROW_WORDS if tag == "Hr_top" else BOTTOM_ROW_WORDS
-    return not said.isdisjoint(_with_pieces(words))  # "bottom-row", "top-course" too
 
 
 def says_from(words: Iterable[str]) -> bool:

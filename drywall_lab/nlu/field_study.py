@@ -41,11 +41,11 @@ from drywall_lab.nlu.base import Tagger
 #: ``benchmarks/field_seeds.py`` one model for each seed it is given).
 DEFAULT_FIELD_TAGGER = {"corpus": "field", "char_features": True, "batch_size": 32, "epochs": 8, "swa_epochs": 3}
 #: The shipped default tagger is the ensemble (``CrfEnsembleTagger``: their CRF scores averaged) of the recipe's seed
-#: models with these seeds: of the three seed models and every ensemble of two or more of them, the candidate that
+#: models with these seeds: of the ensembles of two or more of the three seed models, the one that
 #: keeps the paper's test split at the issue's Acc_inst (99.4% or more) with the least decision cost on the generated
 #: validation and novel splits (``benchmarks/results/ensemble.md``, ``chosen=``; tested), never chosen on the field
 #: sets.
-DEFAULT_ENSEMBLE_SEEDS = (0, 1)
+DEFAULT_ENSEMBLE_SEEDS = (0, 2)
 #: The ablation trains each of its models once, with this seed (the shipped ensemble's second member's).
 STUDY_SEED = 1
 SHARED_FIELD = Path(__file__).resolve().parents[2].parent / "shared" / "field"

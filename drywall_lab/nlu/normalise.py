@@ -159,9 +159,11 @@ def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 
 #: A lower-case "l" or "r" is a side where a side is due: after these words or before these ("2nd from r",
 #: "to the l of", "l line"); elsewhere a lower-case "r" is a texted "are".
-_BEFORE_SIDE = frozenset({"the", "from", "to", "far", "of", "on"})
+_BEFORE_SIDE = frozenset({"the", "from", "to", "far", "furthest", "of", "on", "studs", "places", "stacks", "piles", "over", "further",
+                          "just"})
 _AFTER_SIDE = frozenset({"of", "from", "line", "edge", "side", "end", "pile", "stack"})
 _SIDES = {"l": "left", "r": "right"}
+_ANCHOR_NOUNS = frozenset({"stud", "post", "upright", "pile", "stack", "panel", "sheet"})
 
 
 def _side_letter(pieces: Sequence[Piece], k: int) -> str | None:
@@ -171,7 +173,14 @@ def _side_letter(pieces: Sequence[Piece], k: int) -> str | None:
     before = pieces[k - 1].word.lower() if k else ""
     after = pieces[k + 1].word.lower() if k + 1 < len(pieces) else ""
     count = before.isdigit() or before in DIGIT_WORDS or before in TEEN_WORDS  # "2 r of 500103"
-    return _SIDES[word] if before in _BEFORE_SIDE or after in _AFTER_SIDE or count else None
+    then = pieces[k + 2].word.lower() if k + 2 < len(pieces) else ""
+    anchor = after == "the" and (then in _ANCHOR_NOUNS or then.isdigit())  # "r the stud 500109": right of it
+    return _SIDES[word] if before in _BEFORE_SIDE or after in _AFTER_SIDE or count or anchor else None
+
+
+def _count_follows(pieces: Sequence[Piece], k: int) -> bool:
+    after = pieces[k + 1].word.lower() if k + 1 < len(pieces) else ""
+    return (after.isdigit() and len(after) <= 2) or after in DIGIT_WORDS or after in TEEN_WORDS
 
 
 def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path | str = LEXICON_PATH) -> list[Piece]:
@@ -181,6 +190,8 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
     out: list[Piece] = []
     for k, p in enumerate(pieces):
         reading = exact.get(p.word, any_case.get(p.word.lower())) or _side_letter(pieces, k)
+        if p.word.lower() == "bot" and _count_follows(pieces, k):
+            reading = None  # "bot four" is a unit's call sign, not the bottom row
         if reading is None:
             out.append(p)
             continue

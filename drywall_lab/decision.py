@@ -1,73 +1,44 @@
-"""Deciding safely: IM-aware decoding, and a question instead of a guess (issue 12; spec section 5, ``unclear``).
+"""Deciding safely: one scored decision over the tagger's readings, and a question instead of a guess (issue 30;
+spec section 5, ``unclear``).
 
-The paper's pipeline acts on the single best tag sequence. The paper's future work asks to
-"integrate the NLU and IM modules and use the building component information as an input"; this
-module does that. The tagger gives its k most probable tag sequences with their probabilities and
-each word's tag probabilities (``Tagger.predict_confidence``); every reading goes through the
-information-mapping rules against the site and the action history, and then:
+The paper's pipeline acts on the single best tag sequence. This module reads the tagger's **k best** tag sequences
+instead (``Tagger.predict_confidence``), puts each through the information-mapping rules against the site and the
+action history, and decides in one step:
 
-1. **One command, and sure of it**: the best reading gives a command, no other reading within the
-   margin gives another command, and the readings that give it carry at least ``act`` of the probability.
-   The robot acts. A check of the best reading against its own words comes first; gold tags never meet it (tested
-   on every generated split and on ``data/field``'s hand-written tags):
+1. **Candidates.** Each reading *r* is a candidate, with the command (or refusal) the rules make of it. After an
+   unanswered question, each reading is a candidate once more for each history the instruction may rest on: the
+   history had the robot carried out a command it asked about (``had_it_been_done``), each history counting as much
+   as the one as things stand. A reading whose words name two panels or two studs (``two_meanings``) adds a
+   candidate for the other meaning, as likely as the one the rules took. The probability the k best leave over (1
+   minus their sum) is one more candidate, "none of these". (Features for these three, fitted, came out at weight 0
+   and moved no generated outcome: they were dropped.)
+2. **One score each**, the tagger's log-probability plus weighted features of how the words support the reading::
 
-   - **Two panels or two studs** (``two_meanings``): the IM takes the first target rule that applies ("the 2x8"
-     before "a full one"), but when another rule that applies on its own names another panel (or stud), the
-     words allow two commands: the robot asks, naming both.
+       score(r) = w_logp * log p(r) + sum_f w_f * feature_f(r)
+       P(outcome) = sum of softmax(score) over the candidates that give that outcome
 
-   A rival within the margin whose own words name two panels or studs, one of them the best reading's command
-   ("Unit two, a full sheet on 500103" with "two" read as a width), is torn between that command and another, which
-   is no reading against the command (``two_meanings``); nor, when the best reading's placement agrees with the
-   words, is one whose placement goes against a word that says how the panel goes (a row although "stands" is said;
-   ``placement_contradicted``).
-2. **A second reading would be safer**: the best reading is ``undetermined`` (a missed tag), and
-   readings within the margin give exactly one command, with at least ``recover`` of the probability:
-   the robot takes that reading (the most probable one that is determined and feasible on the site), provided it
-   passes the check of step 1 (otherwise it asks, as step 1 would).
-3. **Otherwise, ask** (refusal reason ``unclear``): two commands within the margin, or a command that
-   is not sure enough. The message says what was understood and asks one question ("Did you mean
-   panel 500321 on stud 500104 on its centre line, or on its left line?"). History and site untouched.
-4. A reading that the site refuses (overlap, buried panel, ...) is refused with the IM's own message
-   unless a feasible reading within the margin is likely enough to be worth a question. When the refused reading's
-   placement goes against a word that says how the panel goes (a row although "stands" is said;
-   ``placement_contradicted``) and the one command within the margin comes from a reading that differs from it only
-   in the placement tags and agrees with that word, the robot takes that reading as in step 2 (same ``recover``
-   probability, same word check). So too when the best reading is a command whose placement goes against such a word
-   ("keep the top clear , the 4x6 stands on 500102" with "top" read as the top row): rather than ask, the robot takes
-   the reading that stands the panel up, if it is the only command the readings that agree with the words give.
+   ``FEATURES`` lists the features; their weights are fitted on generated episodes only (``fit_weights`` for the
+   likelihood of the intended outcome, then ``tune_weights`` for the least cost of the decisions, by
+   ``benchmarks/decision.py``), never on the hand-written sets. Switching a feature off is one line:
+   ``replace(settings, off=("contradicted",))``.
+3. **Least expected cost** (``DecisionCosts``, written down: a wrong move costs 10, a refusal of a meant command
+   1, a question ``ask``)::
 
-5. **Nothing rests on an unanswered question** (``pending``, in an episode): after the robot asked about an
-   instruction (``unclear``) and before it next acts, a command that would be another one had the robot carried
-   out a command it asked about (the same reading through the rules with that command in the history: "the
-   same size as last time", "the top panel of the middle stack", a stud taken) is asked about too, naming both:
-   the worker may well have meant the instruction the robot did not carry out. The command asked about is carried
-   out in thought where the robot asked, before the commands acted on since (``had_it_been_done``: "the previous
-   stud" is still the last one the robot used). One that would make this instruction impossible is no reason to
-   ask when another command asked about leaves it as it is: the worker's words fit that one.
+       act on the likeliest command c:  wrong  * (1 - P(c))
+       ask about the options O:         ask + refuse * P(a command outside O)
+       refuse:                          refuse * P(a command)
 
-   - ``half="said"``: an instruction refused as ``undetermined`` although it said something of the part the rules
-     could not resolve ("a four by eight three studs to the left of that one", with "that one" missed) is half
-     understood: the worker meant a command, and the robot's "which stud?" was never answered. It stays open like
-     a question, with the commands it may have meant (``completions``: the panel it names on every stud where it
-     fits, or every panel on top of a stack for the stud it names), and a command that any of them would change
-     is asked about. A part counts as said when the best reading or a rival within the margin tags a word for it
-     ("two right of the one you just used", read as a stack's position by the best reading and as the stud's by a
-     rival, said something of the stud). Only a changed *command* counts here (a completion on a stud the command would overlap says
-     nothing). An instruction that said nothing of the missing part ("put any sheet on 500104"), and a site
-     refusal (overlap, buried panel), are definite answers: "previous" is then the last accepted command, as spec
-     section 3 says. With gold tags the layer still gives every intended outcome on every generated split
-     (``half="all"``, counting every ``undetermined`` refusal, does not: it is measured, never the default).
-   - ``through``: acting on an instruction the question does not touch does not answer it: the question stays
-     open until the end of the episode (otherwise the next action closes it).
+   The options of a question are the commands whose probability reaches ``option_floor``, at most three (the
+   likeliest first; the likeliest command alone when none does). The floor is calibrated by split conformal
+   prediction (``conformal_floor``) on generated episodes held out from the fit, so that the options hold the
+   intended command at a chosen rate, as KnowNo does for robot planners (Ren et al., CoRL 2023).
 
-6. Optionally, **a second opinion** (``second_opinion``; ``decide_episode(..., check=...)``): a second,
-   differently built tagger whose best reading gives another command turns an action into a question.
-   Off by default (``benchmarks/second_opinion.py`` measures it).
-
-``DecisionSettings`` holds the thresholds; ``benchmarks/decision.py`` chooses them on the generated
-field-corpus validation and novel splits (never on the hand-written field sets) and records the
-risk-coverage curve. The rule trace (``Interpretation.trace``) ends with a ``decision`` stage naming the
-readings considered and why one was taken.
+The trace (``Interpretation.trace``) ends with a ``decision`` stage naming the probabilities and the three expected
+costs. ``decide_tags`` (gold tags: one reading, probability 1) always acts on the reading's command or refuses
+with its refusal, so gold tags give every intended outcome. In an episode (``play_episode``), a question stays open
+(``pending``) until the end of the episode (``through``) or the next action, and an instruction refused as
+``undetermined`` that said something of the part it could not resolve stays open with the commands it may have
+meant (``completions``; ``half``).
 """
 from __future__ import annotations
 
@@ -78,7 +49,7 @@ from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from drywall_lab.corpus.tags import DESTINATION_TAGS, PLACEMENT_TAGS, TARGET_TAGS
+from drywall_lab.corpus.tags import DESTINATION_TAGS, TARGET_TAGS
 from drywall_lab.errors import Refusal
 from drywall_lab.im import ActionHistory, Interpretation, RobotCommand, Trace
 from drywall_lab.im import interpret as im_interpret
@@ -91,58 +62,108 @@ from drywall_lab.im.trace import TaggedInstruction
 from drywall_lab.site import Placement
 
 
-#: Which ``undetermined`` refusals leave an instruction open (step 5): none; those whose reading says something
+#: Which ``undetermined`` refusals leave an instruction open in an episode: none; those whose reading says something
 #: about the part it could not resolve ("three studs to the left of that one"); every one.
 HALF_UNDERSTOOD = ("off", "said", "all")
+
+#: The features of a candidate (step 2 of the module docstring), each with what it says.
+FEATURES = {
+    "log_probability": "the tagger's natural-log probability of the reading",
+    "undetermined": "the rules cannot make a command of the reading (a part missing)",
+    "site_refusal": "the site refuses the reading's command (overlap, buried panel, unknown id, ...)",
+    "refusal_below_best": "a refusal from a reading that is not the tagger's best",
+    "refusal_log_probability": "a refusal's log-probability again (a refusal's probability weighs otherwise)",
+    "contradicted": "the reading puts the panel in a row although a word says it stands",
+    "beyond_k_best": "'none of these': the log of the probability the k best readings leave over",
+}
+
+
+@dataclass(frozen=True)
+class DecisionCosts:
+    """What each outcome costs, in units of one instruction said again (step 3 of the module docstring): ``wrong``
+    a wrong move (a 25 kg sheet in the wrong place), ``refuse`` a refusal where a command was meant (the worker says
+    it again), ``ask`` a question (one more turn, when its options hold the intended command)."""
+
+    wrong: float = 10.0
+    refuse: float = 1.0
+    ask: float = 0.3
+
+
+#: The weights before any fit: the tagger's probabilities as they are (the k best and what they leave over), every
+#: other feature 0.
+START_WEIGHTS = {"log_probability": 1.0, "beyond_k_best": 1.0}
+
+
+def _weights(**given: float) -> tuple[tuple[str, float], ...]:
+    unknown = set(given) - set(FEATURES)
+    if unknown:
+        raise ValueError(f"unknown features {sorted(unknown)}; the features are {list(FEATURES)}")
+    return tuple((name, float(given.get(name, START_WEIGHTS.get(name, 0.0)))) for name in FEATURES)
 
 
 @dataclass(frozen=True)
 class DecisionSettings:
-    """The decision layer's thresholds (chosen by ``benchmarks/decision.py``; see ``DEFAULT_SETTINGS``).
+    """The decision's weights, costs and options floor (fitted and calibrated by ``benchmarks/decision.py``; see
+    ``DEFAULT_SETTINGS``), and how an episode keeps questions open.
 
-    ``k``: tag sequences read; ``margin``: natural-log probability below the best within which a reading
-    counts as a rival; ``act``: the probability the readings of a command must carry to act on it;
-    ``recover``: the same when the best reading was undetermined; ``question``: the probability of a feasible reading that
-    turns a site refusal into a question; ``pending``: in an episode, after a step not understood, ask before
-    acting on a command that step would change (module docstring, step 5); ``half``: which ``undetermined``
-    refusals count as not understood (``HALF_UNDERSTOOD``); ``through``: whether a question stays open after the
-    robot acts on something else; ``word_checks``: the readings checked against their own words (steps 1 and 4).
+    ``k``: tag sequences read; ``weights``: (feature, weight) pairs in ``FEATURES`` order; ``off``: features
+    switched off (weight 0); ``costs``: ``DecisionCosts``; ``option_floor``: the probability a command needs to be
+    an option of a question; ``margin``: natural-log probability below the best within which a reading counts for
+    what an instruction said (``completions``); ``pending``: read an instruction against the histories an
+    unanswered question leaves open; ``half``: which ``undetermined`` refusals stay open (``HALF_UNDERSTOOD``);
+    ``through``: whether a question stays open after the robot acts on something else.
     """
 
     k: int = 8
-    margin: float = 3.0
-    act: float = 0.5
-    recover: float = 0.3
-    question: float = 0.2
+    weights: tuple[tuple[str, float], ...] = _weights()
+    off: tuple = ()
+    costs: DecisionCosts = DecisionCosts()
+    option_floor: float = 0.0
+    margin: float = 1.5
     pending: bool = True
-    half: str = "off"
-    through: bool = False
-    word_checks: bool = True
+    half: str = "said"
+    through: bool = True
 
     def __post_init__(self) -> None:
         if self.k < 1:
             raise ValueError(f"k must be at least 1, got {self.k}")
-        for name in ("act", "recover", "question"):
-            value = getattr(self, name)
-            if not 0 <= value <= 1:
-                raise ValueError(f"{name} must be between 0 and 1, got {value}")
+        if [name for name, _ in self.weights] != list(FEATURES):
+            raise ValueError(f"weights must name the features {list(FEATURES)} in that order")
+        unknown = set(self.off) - set(FEATURES)
+        if unknown:
+            raise ValueError(f"cannot switch off unknown features {sorted(unknown)}")
+        if not 0 <= self.option_floor <= 1:
+            raise ValueError(f"option_floor must be between 0 and 1, got {self.option_floor}")
+        if min(self.costs.wrong, self.costs.refuse, self.costs.ask) < 0:
+            raise ValueError(f"costs must not be negative, got {self.costs}")
         if self.half not in HALF_UNDERSTOOD:
             raise ValueError(f"half must be one of {sorted(HALF_UNDERSTOOD)}, got {self.half!r}")
         if self.margin < 0:
             raise ValueError(f"margin must be at least 0, got {self.margin}")
 
+    @property
+    def weight_vector(self) -> np.ndarray:
+        """The weights in ``FEATURES`` order, those switched off as 0."""
+        return np.array([0.0 if name in self.off else w for name, w in self.weights])
 
-#: Acting on the single best reading, as the paper does: the layer switched off.
-BEST_PATH = DecisionSettings(k=1, margin=0.0, act=0.0, recover=1.0, question=1.0, pending=False, word_checks=False)
-#: The thresholds ``benchmarks/decision.py`` chose on the field corpus's validation and novel splits for the shipped
-#: recipe (an ensemble of two seed models), by the mean cost over the three ensembles of two of the seed models 0-2
-#: (``benchmarks/results/decision.md``; a test checks that they are the recorded choice).
-DEFAULT_SETTINGS = DecisionSettings(k=8, margin=1.5, act=0.0, recover=0.05, question=0.2, pending=True, half="said",
-                                    through=True)
+
+#: Acting on the single best reading, as the paper does: a wrong move costs nothing, so the robot acts on any command.
+BEST_PATH = DecisionSettings(k=1, costs=DecisionCosts(wrong=0.0, refuse=1.0, ask=1.0), pending=False, half="off",
+                             through=False)
+
+#: The weights, costs and options floor ``benchmarks/decision.py`` fitted and calibrated on the generated field
+#: corpus's validation split for the shipped tagger (``benchmarks/results/decision.md``; a test checks that they are
+#: the recorded ones).
+DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
+    log_probability=1.5206, undetermined=-1.3876, site_refusal=-3.262, refusal_below_best=-0.1476,
+    refusal_log_probability=1.2579, contradicted=1.0313, beyond_k_best=2.947),
+    costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
 
 
 # --- readings --------------------------------------------------------------------------------------------
-Outcome = tuple  # ("command", drywall_id, stud_id, placement) or ("refusal", reason)
+Outcome = tuple  # ("command", drywall_id, stud_id, placement), ("refusal", reason) or NONE_OF_THESE
+#: The outcome of the "none of these" candidate: a reading outside the k best.
+NONE_OF_THESE = ("refusal", "none of the k best")
 
 
 def outcome_of(interpretation: Interpretation) -> Outcome:
@@ -176,14 +197,28 @@ class Reading:
 
 
 @dataclass
+class Candidate:
+    """One scored candidate (module docstring, step 1): an outcome, its features (``FEATURES`` order), the reading
+    it comes from (None for "none of these") and the unanswered question whose command its history assumes done
+    (None: the history as it stands)."""
+
+    outcome: Outcome
+    features: np.ndarray
+    reading: Reading | None
+    assumes: "Decision | None" = None
+
+
+@dataclass
 class Decision:
     """What the robot does with one instruction: act on ``interpretation.command``, or refuse/ask.
 
     ``interpretation`` is the chosen reading's (its trace ends with the decision); ``confidence`` the
-    probability of the readings that give the chosen outcome; ``readings`` every reading considered;
-    ``action``: ``act``, ``recover`` (acted on a second reading), ``ask`` or ``refuse``; ``options``: for a
-    question, the commands it asks about (``Outcome`` tuples, the likelier first), so that an answer
-    ("yes", "the second") can pick one (``drywall_lab.dialogue``).
+    probability of the chosen outcome; ``readings`` the tagger's readings; ``action``: ``act``, ``recover`` (acted
+    on a command that is not the best reading's), ``ask`` or ``refuse``; ``options``: the commands a question asks
+    about (``Outcome`` tuples, the likelier first), so that an answer ("yes", "the second") can pick one
+    (``drywall_lab.dialogue``); ``probabilities``: each outcome's probability; ``costs``: the expected cost of
+    acting, asking and refusing; ``candidates``: the scored candidates (``Candidate``), in the order of
+    ``candidates``, so that the weights can be fitted on what the decision saw.
     """
 
     words: list[str]
@@ -193,6 +228,9 @@ class Decision:
     action: str
     readings: list[Reading] = field(default_factory=list)
     options: list[Outcome] = field(default_factory=list)
+    probabilities: dict = field(default_factory=dict)
+    costs: dict = field(default_factory=dict)
+    candidates: list = field(default_factory=list)
 
     @property
     def command(self):
@@ -207,7 +245,7 @@ class Decision:
         return self.interpretation.command is not None
 
 
-# --- telling readings apart, in words ------------------------------------------------------------------------
+# --- telling commands apart, in words ------------------------------------------------------------------------
 _PLACEMENT_TEXT = {
     "vertical_left": "upright with its edge on the stud's left line",
     "vertical_middle": "upright with its edge on the stud's centre line",
@@ -242,11 +280,13 @@ def _confirm(outcome: Outcome) -> str:
     return f"I understood {_describe(outcome)}. I am not sure I understood. Is that right?"
 
 
-def _mass(readings: Iterable[Reading]) -> dict[Outcome, float]:
-    mass: dict[Outcome, float] = {}
-    for r in readings:
-        mass[r.outcome] = mass.get(r.outcome, 0.0) + r.probability
-    return mass
+def question_about(options: Sequence[Outcome]) -> str:
+    """The question for one, two or three options (the likeliest first)."""
+    if len(options) == 1:
+        return _confirm(options[0])
+    if len(options) == 2:
+        return question_between(*options)
+    return "Did you mean " + ", or ".join(f"({n}) {_describe(o)}" for n, o in enumerate(options, start=1)) + "?"
 
 
 def _feasible(history: ActionHistory, command: Outcome) -> bool:
@@ -309,137 +349,174 @@ def placement_contradicted(words: Sequence[str], tags: Sequence[str]) -> bool:
     return bool({"Hr_top", "Hr_btm"}.intersection(tags)) and bool(W.upright_words(words, tags))
 
 
-def _differs_in_placement_only(tags: Sequence[str], other: Sequence[str]) -> bool:
-    return all(a == b or {a, b} <= set(PLACEMENT_TAGS) | {"O"} for a, b in zip(tags, other))
+# --- step 1: the candidates and their features ---------------------------------------------------------------
+_INDEX = {name: i for i, name in enumerate(FEATURES)}
 
 
-# --- the decision ------------------------------------------------------------------------------------------
+def _features(**values: float) -> np.ndarray:
+    out = np.zeros(len(FEATURES))
+    for name, value in values.items():
+        out[_INDEX[name]] = value
+    return out
+
+
+def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHistory,
+                       assumes: "Decision | None" = None, actual: ActionHistory | None = None,
+                       best: bool = True) -> list[Candidate]:
+    """The candidates of one reading read against ``history``: its own outcome, and the other meaning when its words
+    name two panels or studs. ``actual``: the history as it stands, when ``history`` assumes an unanswered question's
+    command done (``assumes``); a command the site would not allow as things stand then counts as a refusal.
+    ``best``: whether the reading is the tagger's best."""
+    outcome = reading.outcome
+    tags = reading.read_tags
+    base = dict(log_probability=reading.logprob,
+                contradicted=float(outcome[0] == "command" and placement_contradicted(words, tags)))
+    if outcome[0] == "refusal":
+        kind = "undetermined" if outcome[1] == "undetermined" else "site_refusal"
+        return [Candidate(outcome, _features(**base, **{kind: 1.0}, refusal_below_best=float(not best),
+                                             refusal_log_probability=reading.logprob), reading, assumes)]
+    if actual is not None and not _feasible(actual, outcome):
+        return [Candidate(("refusal", "unclear"), _features(**base, site_refusal=1.0), reading, assumes)]
+    two = two_meanings(outcome, words, tags, history)
+    if two is None:
+        return [Candidate(outcome, _features(**base), reading, assumes)]
+    out = [Candidate(outcome, _features(**base), reading, assumes)]
+    for other in two[2][1:]:  # the other meaning, as likely as the one the rules took
+        if actual is None or _feasible(actual, other):
+            out.append(Candidate(other, _features(**base), reading, assumes))
+    return out
+
+
+def candidates(words: Sequence[str], readings: Sequence[Reading], history: ActionHistory,
+               unanswered: Sequence = (), interpreter: Callable = im_interpret) -> list[Candidate]:
+    """Step 1 of the module docstring: every reading's candidates against ``history``, and again against each
+    history an unanswered question leaves open (``unanswered``: (decision, the commands it asked about or may have
+    meant, how many commands ``history`` held when it asked) triples), and "none of these"."""
+    out = [c for n, r in enumerate(readings) for c in reading_candidates(words, r, history, best=n == 0)]
+    for entry in unanswered:
+        asked, options = entry[0], entry[1]
+        asked_at = entry[2] if len(entry) > 2 else len(history)
+        for option in options:
+            if option[0] != "command":
+                continue
+            other = had_it_been_done(history, asked_at, option)
+            if other is None:
+                continue  # no longer possible on the site: nothing the worker now builds on
+            for n, r in enumerate(readings):
+                assumed = Reading(r.tags, r.logprob, interpreter(list(words), r.tags, other))
+                out += reading_candidates(words, assumed, other, asked, history, n == 0)
+    left = 1.0 - sum(r.probability for r in readings)
+    if left > 1e-9:
+        out.append(Candidate(NONE_OF_THESE, _features(beyond_k_best=math.log(left)), None))
+    return out
+
+
+def probabilities(cands: Sequence[Candidate], weights: np.ndarray) -> np.ndarray:
+    """Step 2: each candidate's probability, the softmax of its score ``features @ weights``."""
+    scores = np.array([c.features for c in cands]) @ weights
+    scores = np.exp(scores - scores.max())
+    return scores / scores.sum()
+
+
+#: A reading this far (natural log) below the best is not read: its probability, a ten-thousandth of the best one's or
+#: less, goes to "none of these" (it could not move a decision; reading it would cost time).
+NEGLIGIBLE = 9.2
+
+
+# --- steps 2 and 3: the scores and the decision ------------------------------------------------------------
+def expected_costs(mass: Mapping[Outcome, float], costs: DecisionCosts,
+                   option_floor: float) -> tuple[dict[str, float], Outcome | None, list[Outcome]]:
+    """Step 3 of the module docstring: the expected cost of acting on the likeliest command, of asking about the
+    options, and of refusing, from each outcome's probability; with that command (None when there is none) and the
+    options (at most three, the likeliest first)."""
+    commands = sorted((o for o in mass if o[0] == "command"), key=lambda o: -mass[o])
+    p_commands = sum(mass[o] for o in commands)
+    out = {"refuse": costs.refuse * p_commands}
+    if not commands:
+        return out, None, []
+    best = commands[0]
+    options = [o for o in commands if mass[o] >= option_floor][:3] or [best]
+    out["act"] = costs.wrong * (1.0 - mass[best])
+    out["ask"] = costs.ask + costs.refuse * (p_commands - sum(mass[o] for o in options))
+    return out, best, options
+
+
 def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], marginals: np.ndarray,
            labels: Sequence[str], history: ActionHistory | None = None,
-           settings: DecisionSettings = DEFAULT_SETTINGS, interpreter: Callable = im_interpret) -> Decision:
-    """Choose what to do with one instruction from the tagger's readings (module docstring, steps 1-4).
+           settings: DecisionSettings = DEFAULT_SETTINGS, interpreter: Callable = im_interpret,
+           unanswered: Sequence = ()) -> Decision:
+    """Choose what to do with one instruction from the tagger's readings (module docstring).
 
-    ``kbest``: tag sequences with natural-log probabilities, best first (``Tagger.predict_kbest``);
-    ``marginals``: (n_words, n_labels) tag probabilities in ``labels`` order (not read by the steps as they stand;
-    kept so that a ``predict_confidence`` result is passed as it comes). Nothing is recorded.
-    ``interpreter(words, tags, history)`` is the IM's ``interpret`` (a cached one when many settings
-    are compared on the same readings).
+    ``kbest``: tag sequences with natural-log probabilities, best first (``Tagger.predict_kbest``); ``marginals``:
+    (n_words, n_labels) tag probabilities in ``labels`` order (not read; kept so that a ``predict_confidence``
+    result is passed as it comes); ``unanswered``: the questions still open in an episode (``candidates``).
+    Nothing is recorded. ``interpreter(words, tags, history)`` is the IM's ``interpret`` (a cached one when many
+    settings are compared on the same readings).
     """
-    interpret = interpreter
     words = list(words)
     history = history if history is not None else ActionHistory()
-    readings = [Reading(list(tags), float(lp), interpret(words, tags, history))
-                for tags, lp in list(kbest)[: settings.k]]
-    if not readings:
+    kbest = list(kbest)[: settings.k]
+    if not kbest:
         raise ValueError("decide needs at least one tag sequence")
-    best = readings[0]
-    within = [best] + [r for r in readings[1:] if r.logprob >= best.logprob - settings.margin]
-    mass = _mass(readings)
-    rival_commands = list(dict.fromkeys(r.outcome for r in within if r.outcome[0] == "command"))
+    top = float(kbest[0][1])
+    readings = [Reading(list(tags), float(lp), interpreter(words, tags, history))
+                for tags, lp in kbest if float(lp) >= top - NEGLIGIBLE]
+    cands = candidates(words, readings, history, unanswered if settings.pending else (), interpreter)
+    p = probabilities(cands, settings.weight_vector)
+    mass: dict[Outcome, float] = {}
+    for c, q in zip(cands, p):
+        mass[c.outcome] = mass.get(c.outcome, 0.0) + float(q)
+    costs, best, options = expected_costs(mass, settings.costs, settings.option_floor)
+    choice = min(costs, key=lambda k: (costs[k], ("refuse", "ask", "act").index(k)))  # ties: the more careful
 
-    def finish(reading: Reading, action: str, note: str, refusal: Refusal | None = None,
-               options: Sequence[Outcome] = ()) -> Decision:
-        result = Interpretation(list(words), list(reading.tags), Trace(list(reading.interpretation.trace.steps)),
-                                reading.interpretation.command if refusal is None else None,
-                                reading.interpretation.refusal if refusal is None else refusal)
-        alternatives = "; ".join(
-            f"{'command ' + _describe(r.outcome) if r.outcome[0] == 'command' else 'refused (' + r.outcome[1] + ')'}"
-            f" p={r.probability:.3f}" for r in readings[:4])
-        result.trace.add("decision", f"D {action}", True, conclusion=f"{note} [readings: {alternatives}]")
-        return Decision(words, list(reading.tags), result, mass.get(reading.outcome, 0.0), action, readings,
-                        list(options))
+    def likeliest(outcome: Outcome) -> Candidate:
+        return max((c for c in cands if c.outcome == outcome and c.reading is not None), key=lambda c: c.reading.logprob)
 
-    contradicted_of: dict[int, bool] = {}
-
-    def contradicted(reading: Reading) -> bool:
-        """``placement_contradicted`` for a reading, worked out once per decision."""
-        if id(reading) not in contradicted_of:
-            contradicted_of[id(reading)] = placement_contradicted(words, reading.read_tags)
-        return contradicted_of[id(reading)]
-
-    def torn_towards(rival: Reading, outcome: Outcome) -> bool:
-        """Whether a rival's own words name two panels or studs, one of them giving ``outcome`` ("Unit two, a full
-        sheet on 500103" read with "two" as a width and "full" as the size word): it would ask between them, so it is no
-        reading against ``outcome``."""
-        if not settings.word_checks:
-            return False
-        torn = two_meanings(rival.outcome, words, rival.read_tags, history)
-        return torn is not None and outcome in torn[2]
-
-    def word_checks(reading: Reading) -> tuple[str, str, list[Outcome]] | None:
-        """The check of a reading against its own words (step 1), or None when it passes it or it is off."""
-        if not settings.word_checks:
-            return None
-        return two_meanings(reading.outcome, words, reading.read_tags, history)
-
-    def placed_instead() -> Reading | None:
-        """Step 4's reading for a best one whose placement goes against its words: the one command within the margin
-        of the readings that differ from the best only in the placement tags and agree with the words, when no other
-        reading that agrees with them gives another command; None otherwise."""
-        if not settings.word_checks or not contradicted(best):
-            return None
-        agree = [r for r in within[1:] if r.outcome[0] == "command" and not contradicted(r)]
-        placed = [r for r in agree if _differs_in_placement_only(best.read_tags, r.read_tags)]
-        if not placed or len({r.outcome for r in agree}) != 1 or mass[placed[0].outcome] < settings.recover:
-            return None
-        return placed[0] if word_checks(placed[0]) is None else None
-
-    if best.outcome[0] == "command":
-        placed = placed_instead()
-        if placed is not None:
-            return finish(placed, "recover",
-                          f"the best reading's placement goes against the words; the reading that differs only in the "
-                          f"placement and says it as the words do gives one command, p={mass[placed.outcome]:.3f}")
-        sound = settings.word_checks and not contradicted(best)
-        others = list(dict.fromkeys(r.outcome for r in within[1:] if r.outcome[0] == "command"
-                                    and r.outcome != best.outcome and not torn_towards(r, best.outcome)
-                                    and not (sound and contradicted(r))))
-        if others:
-            return finish(best, "ask", "two readings give different commands",
-                          Refusal("unclear", question_between(best.outcome, others[0])), [best.outcome, others[0]])
-        checked = word_checks(best)
-        if checked is not None:
-            why, question, options = checked
-            return finish(best, "ask", why, Refusal("unclear", question), options)
-        if mass[best.outcome] < settings.act:
-            why = f"the command's readings carry p={mass[best.outcome]:.3f} < {settings.act}"
-            return finish(best, "ask", why, Refusal("unclear", _confirm(best.outcome)), [best.outcome])
-        return finish(best, "act", f"one command, p={mass[best.outcome]:.3f}")
-
-    reason = best.outcome[1]
-    if rival_commands:
-        first = max(rival_commands, key=lambda o: mass[o])
-        chosen = next(r for r in within if r.outcome == first)
-        if len(rival_commands) > 1:
-            second = next(o for o in rival_commands if o != first)
-            return finish(chosen, "ask", "readings within the margin give different commands",
-                          Refusal("unclear", question_between(first, second)), [first, second])
-        if reason == "undetermined" and mass[first] >= settings.recover:
-            checked = word_checks(chosen)  # the reading taken must pass the checks the best one would have had to
-            if checked is not None:
-                why, question, options = checked
-                return finish(chosen, "ask", f"the best reading is undetermined, and the next one fails a check: {why}",
-                              Refusal("unclear", question), options)
-            return finish(chosen, "recover",
-                          f"the best reading is undetermined; the next reading within the margin gives one command, "
-                          f"p={mass[first]:.3f}")
-        placed = placed_instead() if reason != "undetermined" else None
-        if placed is not None:
-            return finish(placed, "recover",
-                          f"refused ({reason}), but its placement goes against the words; the reading that differs only "
-                          f"in the placement and says it as the words do gives one command, p={mass[placed.outcome]:.3f}")
-        if mass[first] >= settings.question:
-            message = best.interpretation.refusal.message if reason != "undetermined" else None
-            question = _confirm(first)
-            text = f"{message} Or did you mean {_describe(first)}?" if message else question
-            return finish(chosen, "ask", f"refused ({reason}), but a feasible reading has p={mass[first]:.3f}",
-                          Refusal("unclear", text), [first])
-    return finish(best, "refuse", f"refused ({reason})")
+    shown = "; ".join(f"{_describe(o) if o[0] == 'command' else 'refused (' + o[1] + ')'} p={q:.3f}"
+                      for o, q in sorted(mass.items(), key=lambda item: -item[1])[:4])
+    note = (f"expected costs: " + ", ".join(f"{k} {v:.3f}" for k, v in costs.items()) + f" [outcomes: {shown}]")
+    if choice == "act":
+        chosen = likeliest(best)
+        action = "act" if chosen.assumes is None and best == readings[0].outcome else "recover"
+        source, refusal = chosen.reading.interpretation, None
+    elif choice == "ask":
+        chosen = likeliest(best)
+        action, source = "ask", chosen.reading.interpretation
+        question = question_about(options)
+        refused = [o for o in mass if o[0] == "refusal" and o[1] not in ("undetermined", "unclear", NONE_OF_THESE[1])]
+        if refused and len(options) == 1:
+            top = max(refused, key=lambda o: mass[o])
+            message = likeliest(top).reading.interpretation.refusal.message
+            if mass[top] >= mass[options[0]]:
+                question = f"{message} Or did you mean {_describe(options[0])}?"
+        assumed = [(c.assumes, q) for c, q in zip(cands, p) if c.assumes is not None]
+        if sum(q for _, q in assumed) >= 0.5:  # most of the probability rests on a question not answered
+            question = f"I have not carried out \"{' '.join(assumed[0][0].words)}\". " + question
+        refusal = Refusal("unclear", question)
+    else:
+        action, options = "refuse", []
+        resting = [c.assumes for c, q in zip(cands, p) if c.assumes is not None and c.outcome == ("refusal", "unclear")]
+        refusals = [o for o in mass if o[0] == "refusal" and o != NONE_OF_THESE and o[1] != "unclear"]
+        source = (likeliest(max(refusals, key=lambda o: mass[o])) if refusals else likeliest(readings[0].outcome)
+                  if readings[0].outcome[0] == "refusal" else None)
+        source = source.reading.interpretation if source is not None else readings[0].interpretation
+        refusal = source.refusal or (
+            Refusal("unclear", f"I have not carried out \"{' '.join(resting[0].words)}\", and this rests on it as "
+                               "far as I can tell. Which panel should I pick, and which stud does it go on?")
+            if resting else Refusal("undetermined", "I could not work out one command from that: which panel should I "
+                                                    "pick, and which stud does it go on?"))
+    result = Interpretation(list(words), list(source.tags), Trace(list(source.trace.steps)),
+                            source.command if refusal is None else None, refusal)
+    result.trace.add("decision", f"D {action}", True, conclusion=note)
+    outcome = outcome_of(result)
+    return Decision(words, list(source.tags), result, mass.get(outcome, 0.0) if choice != "ask" else mass[best],
+                    action, readings, list(options), mass, costs, cands)
 
 
 def decide_tags(words: Sequence[str], tags: Sequence[str], labels: Sequence[str],
                 history: ActionHistory | None = None) -> Decision:
-    """The decision for tags known for certain (gold tags): one reading with probability 1."""
+    """The decision for tags known for certain (gold tags): one reading with probability 1, so the robot acts on
+    its command or refuses with its refusal, whatever the weights."""
     marginals = np.zeros((len(tags), len(labels)))
     index = {label: i for i, label in enumerate(labels)}
     for i, tag in enumerate(tags):
@@ -563,66 +640,21 @@ def had_it_been_done(history: ActionHistory, asked_at: int, option: Outcome) -> 
     return other
 
 
-def not_carried_out(decision: Decision, unanswered: Sequence[tuple[Decision, Sequence[Outcome]] | tuple[Decision, Sequence[Outcome], int]],
-                    history: ActionHistory, interpreter: Callable = im_interpret) -> Decision:
-    """Step 5 of the module docstring: ``decision`` would act, but the robot has asked about earlier steps
-    (``unanswered``: (decision, the commands it asked about or may have meant, and how many commands ``history``
-    held when it asked, all of them when left out) triples) and has not carried them out. If one of those
-    commands, carried out when the robot asked (``had_it_been_done``), would make the same reading give another
-    command, ask, naming both. A command that would make this instruction impossible or unclear is no reason to ask
-    when another command asked about leaves it as it is: the worker's words fit that one (not for a question
-    whose every command would)."""
-    if not decision.acted:
-        return decision
-    own = outcome_of(decision.interpretation)
-    for entry in unanswered:
-        asked, options = entry[0], entry[1]
-        asked_at = entry[2] if len(entry) > 2 else len(history)
-        guessed = asked.refusal.reason not in NOT_UNDERSTOOD  # a half-understood refusal: what it may have meant
-        outcomes = []
-        for option in options:
-            if option[0] != "command":
-                continue
-            other_history = had_it_been_done(history, asked_at, option)
-            if other_history is None:
-                continue  # no longer possible on the site: it cannot be what the worker now builds on
-            outcomes.append((option, outcome_of(interpreter(decision.words, decision.tags, other_history))))
-        fits_one = any(other == own for _, other in outcomes)
-        for option, other in outcomes:
-            if other == own or (other[0] != "command" and (guessed or fits_one)):
-                continue
-            said = " ".join(asked.words)
-            if other[0] == "command":
-                question = (f"I have not carried out \"{said}\". As things stand this is {_describe(own)}; had I "
-                            f"carried it out, {_describe(other)}. Which do you mean?")
-                options = [own, other]
-            else:
-                question = (f"I have not carried out \"{said}\". As things stand this is {_describe(own)}. "
-                            "Is that what you mean?")
-                options = [own]
-            gives = _describe(other) if other[0] == "command" else f"a refusal ({other[1]})"
-            return ask_instead(decision, question, options, "D unanswered question",
-                               f"with {_describe(option)} carried out the reading gives {gives}: ask")
-    return decision
-
-
 def play_episode(instructions: Sequence[Sequence[str]], confidences: Sequence, labels: Sequence[str],
                  history: ActionHistory, settings: DecisionSettings = DEFAULT_SETTINGS,
                  interpreter: Callable = im_interpret, checks: Sequence[Interpretation | None] | None = None,
                  any_difference: bool = False) -> list[Decision]:
     """Decide an episode's instructions in order from the tagger's readings (``confidences``, one
-    ``predict_confidence`` result each), recording in ``history`` the commands acted on: ``decide``, then the
-    second opinion of ``checks`` (the check tagger's tags, one per instruction, or None), then step 5
-    (``settings.pending``)."""
+    ``predict_confidence`` result each), recording in ``history`` the commands acted on: ``decide``, each
+    instruction read also against the histories the questions still open leave (``settings.pending``), then the
+    second opinion of ``checks`` (the check tagger's tags, one per instruction, or None)."""
     decisions: list[Decision] = []
-    unanswered: list[Decision] = []
+    unanswered: list[tuple] = []
     for n, (words, conf) in enumerate(zip(instructions, confidences)):
         words = list(words)
-        decision = decide(words, conf.kbest, conf.marginals, labels, history, settings, interpreter)
+        decision = decide(words, conf.kbest, conf.marginals, labels, history, settings, interpreter, unanswered)
         if checks is not None and checks[n] is not None:
             decision = second_opinion(decision, interpreter(words, checks[n], history), any_difference)
-        if settings.pending and unanswered:
-            decision = not_carried_out(decision, unanswered, history, interpreter)
         if decision.acted:
             history.record(decision.command)
             if not settings.through:
@@ -710,3 +742,110 @@ def risk_coverage(rows: Sequence[Mapping], decisions: Sequence[Decision]) -> "pd
                     "risk_among_acted": wrong / i})
     frame = pd.DataFrame(out, columns=["threshold", "coverage", "wrong_action_rate", "risk_among_acted"])
     return frame.groupby("threshold", sort=False).last().reset_index()
+
+
+def candidate_table(decision: Decision, settings: DecisionSettings = DEFAULT_SETTINGS) -> "pd.DataFrame":
+    """The worked example of the module docstring for one decision: each candidate with its outcome, its features
+    (those not 0), its score and its probability, the likeliest first."""
+    import pandas as pd
+
+    weights = settings.weight_vector
+    p = probabilities(decision.candidates, weights)
+    rows = []
+    for c, q in zip(decision.candidates, p):
+        said = {n: round(float(v), 3) for n, v in zip(FEATURES, c.features) if v}
+        rows.append({"outcome": _describe(c.outcome) if c.outcome[0] == "command" else f"refused ({c.outcome[1]})",
+                     "features": said, "score": round(float(c.features @ weights), 3), "probability": float(q)})
+    return pd.DataFrame(rows).sort_values("probability", ascending=False, kind="stable").reset_index(drop=True)
+
+
+# --- fitting the weights, calibrating the options ----------------------------------------------------------
+def truth_mask(cands: Sequence[Candidate], expected: Mapping) -> np.ndarray:
+    """Which candidates give the intended outcome (``expected``: a command's ``drywall_id``, ``stud_id`` and
+    ``placement``, or a ``refusal``): any refusal where a refusal was intended (the batch contract counts any
+    refusal right), the command itself where one was; "none of these" when no reading gives it."""
+    if expected.get("refusal") is not None:
+        mask = np.array([c.outcome[0] == "refusal" for c in cands])
+    else:
+        meant = ("command", expected["drywall_id"], expected["stud_id"], expected["placement"])
+        mask = np.array([c.outcome == meant for c in cands])
+    if not mask.any():
+        mask = np.array([c.outcome == NONE_OF_THESE for c in cands])
+    return mask
+
+
+def fit_weights(examples: Sequence[tuple[np.ndarray, np.ndarray]], l2: float = 0.01,
+                off: Iterable[str] = ()) -> tuple[tuple[str, float], ...]:
+    """The weights of least regularised negative log-likelihood of the intended outcome: ``examples`` are (features,
+    truth mask) pairs, one per instruction (``candidates`` and ``truth_mask``); an instruction no candidate gets
+    right says nothing and is left out. ``l2`` pulls each weight towards its start (1 for ``log_probability``,
+    0 for the others); the features in ``off`` stay 0. The log-likelihood is concave in the weights, so L-BFGS
+    finds its one maximum."""
+    from scipy.optimize import minimize
+
+    data = [(np.asarray(x, dtype=float), np.asarray(y, dtype=bool)) for x, y in examples if np.any(y)]
+    if not data:
+        raise ValueError("no instruction to fit on: no candidate gives any intended outcome")
+    start = np.array([START_WEIGHTS.get(name, 0.0) for name in FEATURES])
+    free = np.array([name not in set(off) for name in FEATURES])
+
+    def loss(w: np.ndarray) -> tuple[float, np.ndarray]:
+        w = np.where(free, w, 0.0)
+        total, grad = 0.0, np.zeros_like(w)
+        for x, y in data:
+            s = x @ w
+            top = s.max()
+            p = np.exp(s - top)
+            z, zy = p.sum(), p[y].sum()
+            total -= math.log(zy) - math.log(z)
+            grad -= (p[y] @ x[y]) / zy - (p @ x) / z
+        total += l2 * float(((w - start) ** 2).sum()) * len(data)
+        grad += 2 * l2 * (w - start) * len(data)
+        return total / len(data), np.where(free, grad, 0.0) / len(data)
+
+    found = minimize(loss, np.where(free, start, 0.0), jac=True, method="L-BFGS-B")
+    return tuple((name, round(float(w) if f else 0.0, 4)) for name, w, f in zip(FEATURES, found.x, free))
+
+
+def conformal_floor(truth_probabilities: Sequence[float], coverage: float = 0.98) -> float:
+    """Split conformal prediction: the probability floor at which the options (the commands whose probability
+    reaches it) hold the intended command at least ``coverage`` of the time on exchangeable instructions, from the
+    intended command's probability on held-out calibration instructions (Angelopoulos and Bates, 2021, section 1)."""
+    scores = np.sort(1.0 - np.asarray(truth_probabilities, dtype=float))
+    n = len(scores)
+    if n == 0:
+        raise ValueError("conformal calibration needs at least one instruction")
+    rank = math.ceil((n + 1) * coverage)
+    if rank > n:
+        return 0.0  # too few instructions for that coverage: every command is an option
+    return round(max(0.0, 1.0 - float(scores[rank - 1])), 4)
+
+
+#: The steps ``tune_weights`` tries on each weight, in units of ``TUNING_UNIT`` (a log-probability weight moves
+#: in quarters, the others in whole units).
+TUNING_STEPS = (-2.0, -1.0, -0.5, 0.5, 1.0, 2.0)
+TUNING_UNIT = {"log_probability": 0.25, "refusal_log_probability": 0.25}
+
+
+def tune_weights(settings: DecisionSettings, cost: Callable[[DecisionSettings], float], sweeps: int = 2,
+                 min_gain: float = 0.0) -> tuple[DecisionSettings, list[dict]]:
+    """Coordinate search from ``settings``'s weights for the least ``cost`` (the decisions' expected cost on
+    generated episodes, which the likelihood does not see: it weighs every instruction, the cost only those near a
+    decision's edge): each weight in turn moved by ``TUNING_STEPS``, a move kept when it lowers the cost by more than
+    ``min_gain`` (say, what one instruction more or less right is worth: a smaller gain is noise). Returns the tuned
+    settings and the moves kept."""
+    weights = dict(settings.weights)
+    best = cost(settings)
+    moves = [{"sweep": 0, "feature": "(start)", "weight": float("nan"), "cost": best}]
+    for sweep in range(1, sweeps + 1):
+        for name in FEATURES:
+            if name in settings.off:
+                continue
+            for step in TUNING_STEPS:
+                trial = dict(weights)
+                trial[name] = round(weights[name] + step * TUNING_UNIT.get(name, 1.0), 4)
+                found = cost(DecisionSettings(**{**settings.__dict__, "weights": tuple(trial.items())}))
+                if found < best - max(min_gain, 1e-12):
+                    best, weights = found, trial
+                    moves.append({"sweep": sweep, "feature": name, "weight": trial[name], "cost": found})
+    return DecisionSettings(**{**settings.__dict__, "weights": tuple(weights.items())}), moves

@@ -23,6 +23,7 @@ from typing import Callable, Iterable, TextIO
 
 from drywall_lab.nlu.normalise import normalise
 from drywall_lab.decision import DEFAULT_SETTINGS, Decision, DecisionSettings, decide_instruction
+from drywall_lab.errors import Refusal
 from drywall_lab.im import ActionHistory, RobotCommand
 from drywall_lab.pipeline import too_long
 from drywall_lab.site import STACK_NAMES, FOOT, Site, SiteState
@@ -144,15 +145,21 @@ class Dialogue:
         return self._act(self.pending[index], "Understood. ")
 
     def options(self, decision: Decision) -> list[RobotCommand]:
-        """The commands a question weighs: those it asks about, then the other readings' commands by probability;
-        each one the robot would carry out as it stands, at most ``MAX_OPTIONS``."""
-        mass: dict = {}
-        for reading in decision.readings:
-            if reading.interpretation.command is not None:
-                mass.setdefault(reading.outcome, [0.0, reading.interpretation.command])[0] += reading.probability
+        """The commands a question weighs: those it asks about, then the other commands by probability; each one the
+        robot would carry out as it stands, at most ``MAX_OPTIONS``."""
+        mass = {o: q for o, q in decision.probabilities.items() if o[0] == "command"}
         ordered = [o for o in decision.options if o in mass]
-        ordered += sorted((o for o in mass if o not in ordered), key=lambda o: -mass[o][0])
-        return [mass[o][1] for o in ordered[:MAX_OPTIONS]]
+        ordered += sorted((o for o in mass if o not in ordered), key=lambda o: -mass[o])
+        out = []
+        for o in ordered:
+            try:
+                command = RobotCommand.build(self.history.site, o[1], o[2], o[3])
+                self.history.state.check_pickable(o[1])
+                self.history.state.check_fits(o[1], o[2], o[3])
+            except Refusal:
+                continue
+            out.append(command)
+        return out[:MAX_OPTIONS]
 
     def instruction(self, text: str) -> Reply:
         """A new instruction (a question still open is dropped first): the command, a question, or a refusal."""

@@ -397,81 +397,28 @@ def test_readme_quotes_the_field_and_ensemble_results() -> None:
         assert f"`{line}`" in readme, line
 
 
-def test_decision_chooses_for_a_recipe_across_models(tmp_path, capsys) -> None:
-    """benchmarks/decision.py with several --tagger options chooses by the mean cost over the models and records
-    each model's own choice; the recorded choice is DEFAULT_SETTINGS (tests/test_decision.py)."""
-    import shutil
-
-    from drywall_lab.nlu import DEFAULT_TAGGER_DIR
+def test_decision_fits_weights_and_records_them(tmp_path, capsys) -> None:
+    """benchmarks/decision.py --quick fits the weights on the fit halves, calibrates the options floor, and records
+    the settings as a literal that builds the same DecisionSettings it printed, with the best path, each feature
+    switched off and other costs of a question; the recorded full run is DEFAULT_SETTINGS (tests/test_decision.py)."""
+    from drywall_lab import decision
+    from drywall_lab.decision import FEATURES
 
     script = load_script("decision")
-    copy = tmp_path / "copy"
-    shutil.copytree(DEFAULT_TAGGER_DIR, copy)
     out = tmp_path / "decision.md"
-    argv = ["--quick", "--out", str(out), "--tagger", str(DEFAULT_TAGGER_DIR), "--tagger", str(copy)]
+    argv = ["--quick", "--out", str(out)]
     assert script.main(argv) == 0
     text = out.read_text(encoding="utf-8")
     assert f"**Command:** `python benchmarks/decision.py {' '.join(argv)}`" in text
-    assert f"**Taggers:** {DEFAULT_TAGGER_DIR}, {copy}" in text
-    chosen = re.search(r"^chosen=(\{.*\})$", text, re.M).group(1)
-    alone = text.split("## Each tagger alone")[1].split("```")[1]
-    rows = [line for line in alone.splitlines() if line.strip()][1:]
-    assert len(rows) == 2  # the same weights choose the same setting, at the same cost
-    own = [re.search(r"\(([^)]*)\)\s+(\S+)\s+(\S+)$", row).groups() for row in rows]
-    assert own[0] == own[1] and own[0][1] == own[0][2]
-    values = own[0][0].split(", ")
-    settings = dict(zip(script.SETTINGS, [*map(float, values[:3]), values[3] == "True"]))
-    assert all(f"'{k}': {v}" in chosen for k, v in settings.items())
-    assert f"chosen={chosen}" in capsys.readouterr().out
-    # scored in two processes: the same tables, the same choice (all but the closing wall time)
-    two = tmp_path / "two.md"
-    assert script.main(["--quick", "--jobs", "2", "--out", str(two), "--tagger", str(DEFAULT_TAGGER_DIR),
-                        "--tagger", str(copy)]) == 0
-    def results(path):
-        return path.read_text(encoding="utf-8").split("## Choice")[1].rsplit("\n", 3)[0]
-    assert results(two) == results(out) and results(out).count("```") >= 8
-    with pytest.raises(SystemExit):
-        script.main(["--quick", "--out", str(out), "--tagger", str(copy), "--tagger", str(copy)])
-
-
-def test_decision_choice_is_the_least_mean_cost_over_models() -> None:
-    """``choose`` averages each setting's cost over every model and split and takes the least (ties: the more
-    careful setting); each model's own choice is its own least cost."""
-    script = load_script("decision")
-
-    class Fixed:
-        """Readings whose decisions are fixed per setting: a model that acts wrongly unless act >= its bar."""
-
-        def __init__(self, bar: float) -> None:
-            self.bar = bar
-            self.rows = [{"expected": {"drywall_id": "1", "stud_id": "2", "placement": "vertical_left",
-                                        "refusal": None}}] * 10
-
-    def scores(rows, decisions):
-        return decisions
-
-    grid = {"act": (0.0, 0.5, 0.9), "recover": (1.0,), "margin": (3.0,), "pending": (True,),
-            "half": ("off",), "through": (False,)}
-
-    def decide(self, settings):
-        wrong = 0.0 if settings.act >= self.bar else 0.1
-        return {"accuracy": 0.9 - wrong if settings.act < 0.9 else 0.8, "wrong_action_rate": wrong,
-                "over_refusal_rate": 0.1 if settings.act < 0.9 else 0.2, "coverage": 1.0}
-
-    Fixed.decide = decide
-    original = script.decision_scores
-    script.decision_scores = scores
-    try:
-        readings = {"a": {"s": Fixed(0.5)}, "b": {"s": Fixed(0.9)}}
-        chosen, table = script.choose(readings, grid)
-        alone = script.each_alone(table, ["a", "b"], chosen)
-    finally:
-        script.decision_scores = original
-    # costs: act 0.0 -> a 1.1, b 1.1; act 0.5 -> a 0.1, b 1.1; act 0.9 -> a 0.2, b 0.2: the mean picks 0.9
-    assert chosen.act == 0.9
-    assert list(alone["own choice"]) == [str((0.5, 1.0, 3.0, True, "off", False)),
-                                          str((0.9, 1.0, 3.0, True, "off", False))]
-    assert list(alone["cost at the joint choice"].round(4)) == [0.2, 0.2]
+    literal = re.search(r"^chosen=(DecisionSettings\(.*\))$", text, re.M).group(1)
+    settings = eval(literal, vars(decision))  # noqa: S307 (our own results file)
+    assert [n for n, _ in settings.weights] == list(FEATURES) and 0 <= settings.option_floor <= 1
+    assert f"chosen={literal}" in capsys.readouterr().out
+    ablation = text.split("## Each feature switched off")[1].split("```")[1]
+    assert all(name in ablation for name in FEATURES)
+    for section in ("## Fitted weights", "## The coordinate search", "## Best path", "## The options",
+                    "## Other costs of a question"):
+        assert section in text
 
 
 def test_the_shipped_tagger_is_the_recorded_choice() -> None:

@@ -44,7 +44,7 @@ def test_every_entry_names_an_existing_attribute(script) -> None:
         assert rule.what and rule.off_text and rule.group
     assert set(script.QUICK_RULES) <= set(names)
     assert {u.name for u in script.UNSWITCHABLE}.isdisjoint(names)
-    assert "torn_towards" in {u.name for u in script.UNSWITCHABLE}  # a closure inside decide: not faked
+    assert "the decision's features" in {u.name for u in script.UNSWITCHABLE}  # switched by settings, not faked
 
 
 @pytest.fixture(scope="module")
@@ -127,7 +127,7 @@ def test_verdicts_come_from_the_numbers(script) -> None:
     text = "\n".join(lines)
     assert "Written by `python benchmarks/rule_ablation.py`" in text and "- cpu: X" in text
     assert f"| 1 | `{script.REGISTRY[0].path}` | {script.REGISTRY[0].off_text} | 0 / 2 | 0 | {script.EARNS} |" in text
-    assert "torn_towards" in text
+    assert "the decision's features" in text
     assert '- data/field (episodes): "?": refused (undetermined) -> refused (no_history)' not in text  # not moved there
     assert '  - validation (episodes): "?": 1 on 2, vertical_left -> 1 on 3, vertical_left' in text
 

@@ -17,6 +17,8 @@ so the rule changes nothing on them (tested on every split); the trace names wha
 """
 from __future__ import annotations
 
+import functools
+
 from typing import Sequence
 
 from drywall_lab.corpus.tags import DESTINATION_TAGS, PLACEMENT_TAGS, TARGET_TAGS
@@ -40,17 +42,20 @@ _ANCHOR = {"panel": "Dw_loc2", "stud": "St_loc2"}
 _FIRST_WORDS = frozenset(cue[0] for cue in CORRECTION_CUES)
 
 
-def _spans(norm: Sequence[str], cues: Sequence[tuple[str, ...]]) -> list[tuple[int, int]]:
-    """(start, end) of every cue in the normalised words, left to right, the longest cue first at each word."""
+@functools.lru_cache(maxsize=1024)
+def _spans(norm: tuple[str, ...], cues: tuple[tuple[str, ...], ...]) -> tuple[tuple[int, int], ...]:
+    """(start, end) of every cue in the normalised words, left to right, the longest cue first at each word (kept for
+    the next reading of the same words: the decision reads up to k tag sequences of one instruction)."""
+    first = {cue[0] for cue in cues}
     out, i = [], 0
     while i < len(norm):
-        cue = next((c for c in cues if tuple(norm[i:i + len(c)]) == c), None)
+        cue = None if norm[i] not in first else next((c for c in cues if norm[i:i + len(c)] == c), None)
         if cue is None:
             i += 1
             continue
         out.append((i, i + len(cue)))
         i += len(cue)
-    return out
+    return tuple(out)
 
 
 def _is_count(word: str) -> bool:
@@ -72,11 +77,11 @@ def _replaced(part: str, before: list[int], after: list[int], words: Sequence[st
 def taken_back(words: Sequence[str], tags: Sequence[str]) -> dict[int, str]:
     """The positions of the tagged words that a later correction takes back, each with the words that took it back;
     empty when there are none (always, for tags that follow the guidelines)."""
-    norm = [W.normalise(w) for w in words]
+    norm = tuple(W.normalise(w) for w in words)
     if _FIRST_WORDS.isdisjoint(norm):
         return {}
     dropped: dict[int, str] = {}
-    for start, end in _spans(norm, CORRECTION_CUES):
+    for start, end in _spans(norm, tuple(CORRECTION_CUES)):
         cue = " ".join(words[start:end])
         for part, part_tags in PARTS.items():
             before = [i for i in range(start) if tags[i] in part_tags and i not in dropped]

@@ -27,11 +27,13 @@ import json
 import subprocess
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import pandas as pd
 
 from drywall_lab.corpus.field_generator import field_split
+from drywall_lab.decision import DEFAULT_SETTINGS
 from drywall_lab.dialogue import MAX_OPTIONS, Dialogue
 from drywall_lab.machine import describe_machine
 from drywall_lab.pipeline import load_tagger_option
@@ -50,6 +52,7 @@ PLAIN = {
     "horizontal_bottom": "horizontally, in the bottom row",
 }
 GENERATED = ("field-validation", "field-novel")
+ASK_COSTS = (0.1, 0.3, 0.5, 1.0)
 
 
 def _same(command: dict | None, expect: dict) -> bool:
@@ -65,7 +68,7 @@ def play_step(dialogue: Dialogue, text: str, expect: dict) -> dict:
     """One step as the scripted worker plays it: ``outcome`` (right, wrong, missed), ``extra`` turns, ``first``
     (right at the first reply)."""
     wants_refusal = expect.get("refusal") is not None
-    extra, restated, first = 0, False, None
+    extra, restated, first, asked, held = 0, False, None, 0, 0
     reply = dialogue.respond({"say": text})
     while True:
         kind = reply["kind"]
@@ -74,28 +77,30 @@ def play_step(dialogue: Dialogue, text: str, expect: dict) -> dict:
                 kind == "command" and not wants_refusal and _same(reply.get("command"), expect))
         if kind == "command":
             ok = not wants_refusal and _same(reply["command"], expect)
-            return {"outcome": "right" if ok else "wrong", "extra": extra, "first": first}
+            return {"outcome": "right" if ok else "wrong", "extra": extra, "first": first, "asked": asked, "held": held}
         if kind == "question":
             options = reply.get("options") or []
             pick = None
             if not wants_refusal and len(options) <= MAX_OPTIONS:
                 pick = next((k for k, c in enumerate(options) if _same(c, expect)), None)
+            if not wants_refusal:
+                asked, held = asked + 1, held + (pick is not None)
             extra += 1
             answer = dialogue.respond({"choose": pick})
             if pick is not None:
                 reply = answer
                 continue
             if answer["kind"] == "command":
-                return {"outcome": "wrong", "extra": extra, "first": first}
+                return {"outcome": "wrong", "extra": extra, "first": first, "asked": asked, "held": held}
             if wants_refusal:
-                return {"outcome": "right", "extra": extra, "first": first}
+                return {"outcome": "right", "extra": extra, "first": first, "asked": asked, "held": held}
         elif kind == "refusal":
             if wants_refusal:
-                return {"outcome": "right", "extra": extra, "first": first}
+                return {"outcome": "right", "extra": extra, "first": first, "asked": asked, "held": held}
         else:
             raise RuntimeError(f"unexpected reply to a step: {reply}")
         if restated:
-            return {"outcome": "missed", "extra": extra, "first": first}
+            return {"outcome": "missed", "extra": extra, "first": first, "asked": asked, "held": held}
         restated = True
         extra += 1
         reply = dialogue.respond({"say": plainly(expect)})
@@ -137,9 +142,28 @@ def play_set(dialogue: Dialogue, episodes: dict[str, list[dict]]) -> tuple[pd.Da
 
 def scores(frame: pd.DataFrame) -> pd.Series:
     outcome = frame["outcome"]
+    asked = frame["asked"].sum()
     return pd.Series({"n": len(frame), "success": (outcome == "right").mean(), "wrong": (outcome == "wrong").mean(),
                       "missed": (outcome == "missed").mean(), "first_reply": frame["first"].mean(),
-                      "extra_turns": frame["extra"].mean()})
+                      "extra_turns": frame["extra"].mean(), "questions": asked,
+                      "options_hold": frame["held"].sum() / asked if asked else float("nan")})
+
+
+def ask_cost_curve(tagger, sets: dict[str, dict[str, list[dict]]]) -> list[str]:
+    """Success against extra turns on the generated splits as the cost of a question (``DecisionCosts.ask``) moves,
+    the weights as fitted: the curve that replaces risk against coverage once the worker answers."""
+    rows = []
+    for ask in ASK_COSTS:
+        dialogue = Dialogue(tagger, replace(DEFAULT_SETTINGS, costs=replace(DEFAULT_SETTINGS.costs, ask=ask)))
+        for split, episodes in sets.items():
+            table, _ = play_set(dialogue, episodes)
+            rows.append({"ask": ask, "split": split, **table.loc["ALL", ["success", "wrong", "missed", "extra_turns"]]})
+    frame = pd.DataFrame(rows)
+    print(frame.to_string(index=False))
+    return ["## Success against extra turns, by the cost of a question (generated splits)", "",
+            f"The shipped cost is {DEFAULT_SETTINGS.costs.ask} (written down in `drywall_lab.decision.DecisionCosts`); "
+            "a cheaper question asks more (more turns), a dearer one acts or refuses instead.", "", "```",
+            frame.to_string(index=False, float_format=lambda x: f"{x:.4f}"), "```", ""]
 
 
 def shared_scorer_report(tagger_option: str | None) -> str:
@@ -165,13 +189,16 @@ def main(argv: list[str] | None = None) -> int:
              "A scripted worker (the rules of `../shared/field/score_dialogue.py`) plays each set through the dialogue "
              "contract in-process. *success*: the step ended as intended; *wrong*: the robot acted, and not as "
              "intended; *missed*: still not done after one plain restatement; *first_reply*: right at the first "
-             "reply (the batch figure); *extra_turns*: answers and restatements a step.", ""]
+             "reply (the batch figure); *extra_turns*: answers and restatements a step; *questions*: questions asked where a "
+             "command was intended; *options_hold*: the share of them whose options held it (the options are "
+             "calibrated on generated episodes for 98%: `benchmarks/results/decision.md`).", ""]
     sets = {} if args.skip_generated else {split: episodes_of_split(split) for split in GENERATED}
     sets.update({name: episodes_of_gold(directory / "gold.jsonl") for name, directory in field_sets().items()})
     summary = []
     for name, episodes in sets.items():
         table, seconds = play_set(dialogue, episodes)
-        text = table.to_string(float_format=lambda x: f"{x:.4f}", formatters={"n": "{:.0f}".format})
+        text = table.to_string(float_format=lambda x: f"{x:.4f}",
+                               formatters={"n": "{:.0f}".format, "questions": "{:.0f}".format})
         print(f"== {name} ==\n{text}")
         lines += [f"## {name}", "", f"{len(episodes)} episodes, {int(table.loc['ALL', 'n'])} steps, {seconds:.1f} s.",
                   "", "```", text, "```", ""]
@@ -183,6 +210,8 @@ def main(argv: list[str] | None = None) -> int:
         summary += [f"{name}_success={table.loc['ALL', 'success']:.4f}",
                     f"{name}_wrong_action_rate={table.loc['ALL', 'wrong']:.4f}",
                     f"{name}_extra_turns_per_step={table.loc['ALL', 'extra_turns']:.4f}"]
+    if not args.skip_generated:
+        lines += ask_cost_curve(tagger, {split: sets[split] for split in GENERATED})
     lines += ["## Summary", "", "```", *summary, "```", ""]
     write_results_file(out, lines)
     print("\n".join(summary))

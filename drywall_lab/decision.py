@@ -723,27 +723,6 @@ def decision_scores(rows: Sequence[Mapping], decisions: Sequence[Decision]) -> d
             "coverage": sum(d.acted for d in decisions) / n}
 
 
-def risk_coverage(rows: Sequence[Mapping], decisions: Sequence[Decision]) -> "pd.DataFrame":
-    """Selective prediction: as the threshold on the acted command's probability rises, the share of
-    instructions acted on (coverage) and the wrong actions among all instructions (risk).
-
-    ``decisions`` should be made with ``act=0`` (every determined, unrivalled command acted on), so
-    that each threshold keeps the actions whose ``confidence`` reaches it. One row per threshold.
-    """
-    import pandas as pd
-
-    acted = sorted(((d.confidence, step_outcome(outcome_of(d.interpretation), r["expected"]) == "wrong_action")
-                    for r, d in zip(rows, decisions) if d.acted), reverse=True)
-    n = len(rows)
-    out, wrong = [], 0
-    for i, (confidence, is_wrong) in enumerate(acted, start=1):
-        wrong += is_wrong
-        out.append({"threshold": confidence, "coverage": i / n, "wrong_action_rate": wrong / n,
-                    "risk_among_acted": wrong / i})
-    frame = pd.DataFrame(out, columns=["threshold", "coverage", "wrong_action_rate", "risk_among_acted"])
-    return frame.groupby("threshold", sort=False).last().reset_index()
-
-
 def candidate_table(decision: Decision, settings: DecisionSettings = DEFAULT_SETTINGS) -> "pd.DataFrame":
     """The worked example of the module docstring for one decision: each candidate with its outcome, its features
     (those not 0), its score and its probability, the likeliest first."""

@@ -15,7 +15,7 @@ from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, FEATURES, DecisionCosts, DecisionSettings, _weights,
                                   completions, conformal_floor, decide, decide_episode, decide_rows, decide_tags,
                                   decision_scores, expected_costs, fit_weights, outcome_of, placement_contradicted,
-                                  play_episode, question_between, risk_coverage, second_opinion, step_outcome,
+                                  play_episode, question_between, second_opinion, step_outcome,
                                   truth_mask, tune_weights, two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
@@ -349,7 +349,7 @@ def test_decide_episode_with_a_check_asks_where_it_disagrees_and_records_nothing
     assert len(history) == 1
 
 
-def test_scores_and_risk_coverage():
+def test_scores():
     command = {"drywall_id": "500320", "stud_id": "500100", "placement": "vertical_left", "refusal": None}
     refusal = {"drywall_id": None, "stud_id": None, "placement": None, "refusal": "overlap"}
     assert step_outcome(("command", "500320", "500100", "vertical_left"), command) == "right"
@@ -367,9 +367,6 @@ def test_scores_and_risk_coverage():
     scores = decision_scores(rows, ds)
     assert scores == pytest.approx({"accuracy": 1 / 3, "wrong_action_rate": 1 / 3, "over_refusal_rate": 1 / 3,
                                     "coverage": 2 / 3})
-    curve = risk_coverage(rows, ds)
-    assert list(curve["coverage"]) == pytest.approx([1 / 3, 2 / 3])
-    assert list(curve["wrong_action_rate"]) == pytest.approx([0, 1 / 3])  # the sure one first, then the wrong one
 
 
 def test_bad_settings_are_refused():

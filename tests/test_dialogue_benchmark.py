@@ -19,7 +19,8 @@ def test_the_worker_chooses_the_intended_option_with_one_extra_turn(benchmark_sc
     script = benchmark_script("dialogue")
     d = _dialogue()
     d.respond({"new": "e"})
-    assert script.play_step(d, CENTRE, LEFT) == {"outcome": "right", "extra": 1, "first": False}
+    assert script.play_step(d, CENTRE, LEFT) == {"outcome": "right", "extra": 1, "first": False, "asked": 1,
+                                                 "held": 1}
     assert [c.placement.value for c in d.history.commands] == ["vertical_left"]
 
 
@@ -33,10 +34,10 @@ def test_a_refusal_is_restated_plainly_once_and_then_missed(benchmark_script):
     d.respond({"new": "e"})
     # "panel 500300" is not on top: refused; the restatement is carried out
     assert script.play_step(d, "panel 500300 on stud 500108", MIDDLE) == {"outcome": "right", "extra": 1,
-                                                                         "first": False}
+                                                                         "first": False, "asked": 0, "held": 0}
     d.respond({"new": "e"})
     assert script.play_step(d, "panel 500300 on stud 500108", {"refusal": "not_on_top"}) == {
-        "outcome": "right", "extra": 0, "first": True}
+        "outcome": "right", "extra": 0, "first": True, "asked": 0, "held": 0}
     assert script.play_step(d, "the full sheet on stud 500100", MIDDLE)["outcome"] == "wrong"
 
 
@@ -44,9 +45,10 @@ def test_scores_by_voice(benchmark_script):
     import pandas as pd
 
     script = benchmark_script("dialogue")
-    frame = pd.DataFrame([{"voice": "a", "outcome": "right", "extra": 1, "first": False},
-                          {"voice": "a", "outcome": "missed", "extra": 2, "first": False},
-                          {"voice": "a", "outcome": "right", "extra": 0, "first": True},
-                          {"voice": "a", "outcome": "wrong", "extra": 0, "first": False}])
+    frame = pd.DataFrame([{"voice": "a", "outcome": "right", "extra": 1, "first": False, "asked": 1, "held": 1},
+                          {"voice": "a", "outcome": "missed", "extra": 2, "first": False, "asked": 1, "held": 0},
+                          {"voice": "a", "outcome": "right", "extra": 0, "first": True, "asked": 0, "held": 0},
+                          {"voice": "a", "outcome": "wrong", "extra": 0, "first": False, "asked": 0, "held": 0}])
     s = script.scores(frame)
     assert (s["success"], s["wrong"], s["missed"], s["first_reply"], s["extra_turns"]) == (0.5, 0.25, 0.25, 0.25, 0.75)
+    assert (s["questions"], s["options_hold"]) == (2, 0.5)

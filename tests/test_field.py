@@ -405,7 +405,7 @@ def test_the_ablation_scores_a_kept_model_without_training_it_again(tmp_path, ca
     row_before = json.loads((tmp_path / "out" / "rows" / "lstm-paper.json").read_text())
     import dataclasses
 
-    monkeypatch.setattr(decision, "DEFAULT_SETTINGS", dataclasses.replace(decision.DEFAULT_SETTINGS, act=0.123))
+    monkeypatch.setattr(decision, "DEFAULT_SETTINGS", dataclasses.replace(decision.DEFAULT_SETTINGS, option_floor=0.123))
     assert FS.study_fingerprint(tiny) != row_before["fingerprint"]  # the row is stale, the model is not
     again = FS.run_field_study(tmp_path / "out", tiny, ["LSTM paper"], keep_models=models)
     assert f"LSTM paper: the model kept in {kept}" in capsys.readouterr().out

@@ -47,7 +47,7 @@ def stud_by_id(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
         return None
     ids = W.ids_in(said)
     if not ids:
-        raise Refusal("undetermined", f"{W.quote(said)} is tagged as a stud id but is not a number: which stud?")
+        raise Refusal("undetermined", f"Which stud: you said {W.quote(said)}, and I did not hear a stud number in it.")
     if len(ids) > 1:
         raise Refusal("undetermined", f"Two studs are named, {' and '.join(ids)}: which one should I use?")
     stud = ctx.site.stud(ids[0])  # unknown_id for an id not on this wall
@@ -110,7 +110,7 @@ def _anchor(ti: TaggedInstruction, ctx: MappingContext) -> tuple[Stud, str]:
         return stud, f"the previous stud {stud.stud_id}"
     position = W.line_position(said, quoted, len(ctx.site.studs), "stud")  # "the middle stud", "the third stud"
     if position is None:
-        raise Refusal("undetermined", f"{quoted} does not say which stud the position is counted from.")
+        raise Refusal("undetermined", f"Which stud: you said {quoted}, but not which stud to count from.")
     index, how = position
     stud = _stud_at(ctx, index, quoted)
     return stud, f"{quoted} ({how}, stud {stud.stud_id})"

@@ -65,7 +65,7 @@ def target_by_id(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
         return None
     ids = W.ids_in(said)
     if not ids:
-        raise Refusal("undetermined", f"{W.quote(said)} is tagged as a panel id but is not a number: which panel?")
+        raise Refusal("undetermined", f"Which panel: you said {W.quote(said)}, and I did not hear a panel number in it.")
     if len(ids) > 1:
         raise Refusal("undetermined", f"Two panels are named, {' and '.join(ids)}: which one should I pick?")
     panel = ctx.site.panel(ids[0])  # unknown_id for an id not on this site
@@ -210,7 +210,7 @@ def target_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> D
         anchor = ctx.site.panel(last["drywall_id"])
         anchor_text = f"the previous panel {anchor.drywall_id}"
     else:
-        raise Refusal("undetermined", f"{W.quote(anchor_words)} does not say which panel the position is counted from.")
+        raise Refusal("undetermined", f"Which panel: you said {W.quote(anchor_words)}, but not which stack to count from.")
     index = STACK_NAMES.index(anchor.stack) + (count if direction == "right" else -count)
     where = (f"{W.places(count)} to the {direction} of the {anchor.stack} stack ({anchor_text})" if count
              else f"the same stack as {anchor_text}, the {anchor.stack} stack")

@@ -28,7 +28,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from dataclasses import asdict, replace
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -87,15 +87,13 @@ class Readings:
             self._cache[key] = interpret(words, tags, history)
         return self._cache[key]
 
-    def decide(self, settings: DecisionSettings, checks: list | None = None, any_difference: bool = False) -> list:
-        """One decision a row, the episodes played in order; ``checks``: a second tagger's tags, one a row, for
-        ``play_episode``'s second opinion (``benchmarks/second_opinion.py``)."""
+    def decide(self, settings: DecisionSettings) -> list:
+        """One decision a row, the episodes played in order."""
         out: list = [None] * len(self.rows)
         for steps in self.episodes:
             history = ActionHistory.from_commands(self.rows[steps[0]]["context"]["history"])
             decisions = play_episode([self.rows[i]["words"] for i in steps], [self.confidences[i] for i in steps],
-                                     self.labels, history, settings, self.interpret,
-                                     None if checks is None else [checks[i] for i in steps], any_difference)
+                                     self.labels, history, settings, self.interpret)
             for i, decision in zip(steps, decisions):
                 out[i] = decision
         return out

@@ -58,12 +58,12 @@ def field_sets() -> dict[str, Path]:
     return sets
 
 
-def run_set(directory: Path, tagger, check=None, any_difference: bool = False) -> tuple[list[dict], pd.DataFrame, float]:
+def run_set(directory: Path, tagger) -> tuple[list[dict], pd.DataFrame, float]:
     """The `run` records of one set, their scores by voice, and the seconds it took (a set without
-    hand-written tags, ``../shared/field``, is scored only); ``check``: a second opinion, as ``run_episodes``."""
+    hand-written tags, ``../shared/field``, is scored only)."""
     field_set = read_field_set(directory, tagged=directory == FIELD_DIR)
     started = time.perf_counter()
-    records = list(run_episodes(field_set.episodes, tagger, check=check, any_difference=any_difference))
+    records = list(run_episodes(field_set.episodes, tagger))
     seconds = time.perf_counter() - started
     return records, score_run(records, field_set), seconds
 

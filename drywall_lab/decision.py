@@ -524,33 +524,6 @@ def decide_tags(words: Sequence[str], tags: Sequence[str], labels: Sequence[str]
     return decide(words, [(list(tags), 0.0)], marginals, labels, history)
 
 
-def second_opinion(decision: Decision, check: Interpretation, any_difference: bool = False) -> Decision:
-    """A check on confident mistakes: ``decision`` stands unless the robot would act and a second, differently
-    built tagger's best reading (``check``: its tags through the IM rules against the same history) gives
-    another command (with ``any_difference``, any other outcome, a refusal included). Then the robot asks,
-    naming both readings, and the trace says why. ``benchmarks/second_opinion.py`` measures the rule."""
-    own, other = outcome_of(decision.interpretation), outcome_of(check)
-    if not decision.acted or other == own or (other[0] != "command" and not any_difference):
-        return decision
-    if other[0] == "command":
-        question, options, seen = question_between(own, other), [own, other], f"command {_describe(other)}"
-    else:
-        question, options, seen = _confirm(own), [own], f"refused ({other[1]})"
-    return ask_instead(decision, question, options, "D second opinion",
-                       f"a second tagger's reading gives {seen} (tags: {' '.join(check.tags)}): ask")
-
-
-def ask_instead(decision: Decision, question: str, options: Sequence[Outcome], rule: str, why: str) -> Decision:
-    """``decision`` turned into a question (refusal ``unclear``) about ``options``; the trace ends with ``rule``
-    and why. Nothing is recorded."""
-    chosen = decision.interpretation
-    result = Interpretation(list(chosen.words), list(chosen.tags), Trace(list(chosen.trace.steps)), None,
-                            Refusal("unclear", question))
-    result.trace.add("decision", rule, True, conclusion=why)
-    return Decision(decision.words, decision.tags, result, decision.confidence, "ask", decision.readings,
-                    list(options))
-
-
 # --- one instruction, whole episodes ----------------------------------------------------------------------
 def decide_instruction(words: Sequence[str], tagger, history: ActionHistory,
                        settings: DecisionSettings = DEFAULT_SETTINGS) -> Decision:
@@ -642,19 +615,15 @@ def had_it_been_done(history: ActionHistory, asked_at: int, option: Outcome) -> 
 
 def play_episode(instructions: Sequence[Sequence[str]], confidences: Sequence, labels: Sequence[str],
                  history: ActionHistory, settings: DecisionSettings = DEFAULT_SETTINGS,
-                 interpreter: Callable = im_interpret, checks: Sequence[Interpretation | None] | None = None,
-                 any_difference: bool = False) -> list[Decision]:
+                 interpreter: Callable = im_interpret) -> list[Decision]:
     """Decide an episode's instructions in order from the tagger's readings (``confidences``, one
     ``predict_confidence`` result each), recording in ``history`` the commands acted on: ``decide``, each
-    instruction read also against the histories the questions still open leave (``settings.pending``), then the
-    second opinion of ``checks`` (the check tagger's tags, one per instruction, or None)."""
+    instruction read also against the histories the questions still open leave (``settings.pending``)."""
     decisions: list[Decision] = []
     unanswered: list[tuple] = []
-    for n, (words, conf) in enumerate(zip(instructions, confidences)):
+    for words, conf in zip(instructions, confidences):
         words = list(words)
         decision = decide(words, conf.kbest, conf.marginals, labels, history, settings, interpreter, unanswered)
-        if checks is not None and checks[n] is not None:
-            decision = second_opinion(decision, interpreter(words, checks[n], history), any_difference)
         if decision.acted:
             history.record(decision.command)
             if not settings.through:
@@ -670,17 +639,13 @@ def play_episode(instructions: Sequence[Sequence[str]], confidences: Sequence, l
 
 
 def decide_episode(instructions: Sequence[Sequence[str]], tagger, settings: DecisionSettings = DEFAULT_SETTINGS,
-                   history: ActionHistory | None = None, check=None, any_difference: bool = False) -> list[Decision]:
+                   history: ActionHistory | None = None) -> list[Decision]:
     """Decide each instruction of an episode in order, recording the commands acted on in ``history``
-    (``play_episode`` on the tagger's readings).
-
-    ``check``: a second tagger whose best tags give each decision a ``second_opinion`` (off by default)."""
+    (``play_episode`` on the tagger's readings)."""
     history = history if history is not None else ActionHistory()
     instructions = [list(w) for w in instructions]
     confidences = tagger.predict_confidence(instructions, k=settings.k) if instructions else []
-    checks = check.predict(instructions) if check is not None and instructions else None
-    return play_episode(instructions, confidences, tagger.labels, history, settings, im_interpret, checks,
-                        any_difference)
+    return play_episode(instructions, confidences, tagger.labels, history, settings, im_interpret)
 
 
 # --- measuring: accuracy, wrong actions, over-refusals, risk against coverage ------------------------------

@@ -432,11 +432,11 @@ def check_own_instructions(instructions: Sequence[str], expected: Mapping[str, s
     Passes when there are at least ``minimum`` different instructions, none of them moves the robot wrongly
     (a command other than ``expected``: ``{"drywall_id", "stud_id", "placement"}``), and at least two are
     carried out as intended (a question is safe, but a pipeline that only asks is no help). Each message
-    says what the pipeline did with one instruction. Returns a ``drywall_lab.course.ExerciseCheck``.
+    says what the pipeline did with one instruction. Returns a ``drywall_lab.exercise.ExerciseCheck``.
     """
     from drywall_lab.corpus.io import tokenize
     from drywall_lab.nlu.normalise import normalise
-    from drywall_lab.course import ExerciseCheck
+    from drywall_lab.exercise import ExerciseCheck
     from drywall_lab.decision import decide_episode
     from drywall_lab.nlu import default_tagger
 

@@ -128,16 +128,15 @@ def _as_said(text: str) -> Normalised:
 
 
 def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None,
-                settings: "DecisionSettings | None" = None, check: WordTagger | None = None,
-                any_difference: bool = False, read: Sequence[Normalised] | None = None) -> list[Interpretation]:
+                settings: "DecisionSettings | None" = None,
+                read: Sequence[Normalised] | None = None) -> list[Interpretation]:
     """Read every instruction of the episode through the front end, tag them (one batch), then decide them in
     order on a fresh site. Each interpretation's trace starts with what the front end changed.
 
     A tagger with confidence (``predict_confidence``, both of the project's taggers) goes through the
     decision layer (``drywall_lab.decision``: IM-aware decoding; a question, refusal reason ``unclear``,
     instead of a guess) with ``settings`` (default ``DEFAULT_SETTINGS``; ``BEST_PATH`` acts on the single
-    best tag sequence, as the paper does). Any other tagger's tags are mapped as they are. ``check``: a second
-    tagger giving each decision a ``second_opinion`` (``any_difference``: on any other outcome), off by default.
+    best tag sequence, as the paper does). Any other tagger's tags are mapped as they are.
     ``read``: the instructions already read by ``read_instructions``.
     """
     from drywall_lab.decision import DEFAULT_SETTINGS, decide_episode
@@ -147,8 +146,7 @@ def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None,
     words = [[] if refusal else list(n.words) for n, refusal in zip(read, long)]  # a refused one is never tagged
     if hasattr(tagger, "predict_confidence"):
         history = ActionHistory(site)
-        results = [d.interpretation for d in decide_episode(words, tagger, settings or DEFAULT_SETTINGS, history,
-                                                            check, any_difference)]
+        results = [d.interpretation for d in decide_episode(words, tagger, settings or DEFAULT_SETTINGS, history)]
     else:
         tags = tagger.predict(words) if words else []
         mapper = InformationMapper(site)
@@ -161,12 +159,11 @@ def run_episode(episode: Mapping, tagger: WordTagger, site: Site | None = None,
 
 
 def run_episodes(episodes: Iterable[Mapping], tagger: WordTagger, site: Site | None = None,
-                 settings: "DecisionSettings | None" = None, check: WordTagger | None = None,
-                 any_difference: bool = False) -> Iterator[dict]:
-    """The ``run`` output records, episode after episode (spec section 6); ``check`` as in ``run_episode``."""
+                 settings: "DecisionSettings | None" = None) -> Iterator[dict]:
+    """The ``run`` output records, episode after episode (spec section 6)."""
     for episode in episodes:
         read = read_instructions(episode["instructions"])
-        for step, result in enumerate(run_episode(episode, tagger, site, settings, check, any_difference, read)):
+        for step, result in enumerate(run_episode(episode, tagger, site, settings, read=read)):
             yield contract_record(episode["id"], step, result, read[step])
 
 

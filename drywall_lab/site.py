@@ -16,7 +16,7 @@ from dataclasses import dataclass, field, replace
 from enum import Enum
 from functools import lru_cache
 from pathlib import Path
-from typing import Iterable
+from typing import Callable, Iterable, TypeVar
 
 import pandas as pd
 
@@ -134,6 +134,19 @@ ON_ITS_SIDE = (_HALF, 0.0, _HALF, 0.0)  #: horizontal placements: a quarter turn
 LYING_FLAT = (_HALF, _HALF, 0.0, 0.0)  #: in a stack: a quarter turn about x, length along y, thickness up
 
 
+_Item = TypeVar("_Item", Stud, Panel)
+
+
+def _by_id(items: Iterable[_Item], id_field: str, wanted: str | int, unknown: Callable[[str], str]) -> _Item:
+    """The item whose ``id_field`` is ``wanted`` (as a string, spaces stripped); a ``Refusal('unknown_id')`` saying
+    ``unknown(key)`` for any other."""
+    key = str(wanted).strip()
+    for item in items:
+        if getattr(item, id_field) == key:
+            return item
+    raise Refusal("unknown_id", unknown(key))
+
+
 @dataclass(frozen=True)
 class Site:
     """The fixed building component tables: studs and panels (the paper's Fig. 9)."""
@@ -186,25 +199,13 @@ class Site:
 
     def stud(self, stud_id: str | int) -> Stud:
         """The stud with this id; a ``Refusal('unknown_id')`` for any other."""
-        key = str(stud_id).strip()
-        for s in self.studs:
-            if s.stud_id == key:
-                return s
-        raise Refusal(
-            "unknown_id",
-            f"There is no stud {key} on this wall; studs run from {self.studs[0].stud_id} to {self.studs[-1].stud_id}.",
-        )
+        return _by_id(self.studs, "stud_id", stud_id, lambda key: (
+            f"There is no stud {key} on this wall; studs run from {self.studs[0].stud_id} to {self.studs[-1].stud_id}."))
 
     def panel(self, drywall_id: str | int) -> Panel:
         """The panel with this id; a ``Refusal('unknown_id')`` for any other."""
-        key = str(drywall_id).strip()
-        for p in self.panels:
-            if p.drywall_id == key:
-                return p
-        raise Refusal(
-            "unknown_id",
-            f"There is no panel {key} on this site; the panels are {', '.join(sorted(self.panel_ids))}.",
-        )
+        return _by_id(self.panels, "drywall_id", drywall_id, lambda key: (
+            f"There is no panel {key} on this site; the panels are {', '.join(sorted(self.panel_ids))}."))
 
     def stud_at(self, index: int) -> Stud:
         return self.studs[index]

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 
 from drywall_lab import course
 from drywall_lab.corpus import TAGS, read_corpus, tag_table
+from drywall_lab.course import bert as course_bert
 from drywall_lab.course import fast_mode
 from drywall_lab.errors import REFUSAL_REASONS
 from drywall_lab.nlu import vote_word_tags
@@ -412,7 +413,7 @@ def test_token_predictions_vote_to_what_predict_says(tiny_bert):
         assert table["word id"].dropna().max() == len(row["words"]) - 1  # every piece, word ids offset
         voted = vote_word_tags(list(table["token tag"]), list(table["word id"]), len(row["words"]))
         assert voted == tags
-    batched = course._token_tables(tiny_bert, [r["words"] for r in rows])  # what vote_statistics reads
+    batched = course_bert._token_tables(tiny_bert, [r["words"] for r in rows])  # what vote_statistics reads
     for row, table in zip(rows, batched):
         single = course.token_predictions(tiny_bert, row["words"])
         assert table[["token", "word id"]].equals(single[["token", "word id"]])

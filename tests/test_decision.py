@@ -15,7 +15,7 @@ from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, FEATURES, DecisionCosts, DecisionSettings, _weights,
                                   completions, conformal_floor, decide, decide_episode, decide_rows, decide_tags,
                                   decision_scores, expected_costs, fit_weights, outcome_of, placement_contradicted,
-                                  play_episode, question_between, second_opinion, step_outcome,
+                                  play_episode, question_between, step_outcome,
                                   truth_mask, tune_weights, two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
@@ -304,49 +304,6 @@ def test_an_unanswered_question_stays_open_after_an_unrelated_action():
     assert [d.action for d in kept] == ["act", "ask", "act", "ask"]
     closed = play_episode(steps, readings, TAGS, ActionHistory(), replace(PLAIN, through=False))
     assert [d.action for d in closed] == ["act", "ask", "act", "act"]
-
-
-# --- a second opinion ------------------------------------------------------------------------------------------
-def test_a_second_opinion_with_another_command_turns_the_action_into_a_question():
-    words, tags = _wt(CENTRE)
-    acted = decide(words, [(tags, math.log(0.95))], _sure(tags), TAGS)
-    left = ["O" if t == "Vr_md" else t for t in tags]
-    d = second_opinion(acted, interpret(words, left))
-    assert d.action == "ask" and not d.acted and d.refusal.reason == "unclear"
-    assert d.refusal.message == ("Did you mean panel 500321 on stud 500104 upright with its edge on the stud's centre "
-                                 "line, or upright with its edge on the stud's left line?")
-    assert d.options == [outcome_of(acted.interpretation), outcome_of(interpret(words, left))]
-    assert "D second opinion" in str(d.interpretation.trace)
-    assert acted.acted and acted.action == "act"  # the first decision is not changed in place
-
-
-def test_a_second_opinion_that_agrees_or_only_refuses_leaves_the_decision():
-    words, tags = _wt(CENTRE)
-    acted = decide(words, [(tags, math.log(0.95))], _sure(tags), TAGS)
-    assert second_opinion(acted, interpret(words, tags)) is acted
-    undetermined = interpret(words, ["O"] * len(words))
-    assert undetermined.refusal is not None
-    assert second_opinion(acted, undetermined) is acted
-    careful = second_opinion(acted, undetermined, any_difference=True)
-    assert careful.action == "ask" and careful.refusal.message.startswith("I understood panel 500321 on stud 500104")
-    refused = decide(words, [(["O"] * len(words), 0.0)], _sure(["O"] * len(words)), TAGS)
-    assert second_opinion(refused, interpret(words, tags)) is refused  # a check never makes the robot act
-
-
-class _Contrary:
-    """A check tagger that reads every centre line as nothing (so the left line)."""
-
-    def predict(self, sentences):
-        return [["O" if t == "Vr_md" else t for t in default_tagger().predict([s])[0]] for s in sentences]
-
-
-def test_decide_episode_with_a_check_asks_where_it_disagrees_and_records_nothing_then():
-    tagger = default_tagger()
-    texts = ["Put panel 500320 on stud 500100", "Put panel 500321 on stud 500104 on the centre line"]
-    history = ActionHistory()
-    decisions = decide_episode([t.split() for t in texts], tagger, DEFAULT_SETTINGS, history, check=_Contrary())
-    assert [d.action for d in decisions] == ["act", "ask"]
-    assert len(history) == 1
 
 
 def test_scores():

@@ -62,6 +62,8 @@ def test_tiny_study_writes_every_table(tmp_path):
 # --- the study's MiniLM learning rate: chosen on validation by benchmarks/bert_settings.py --------------
 REPO = Path(__file__).resolve().parent.parent
 README = REPO / "README.md"
+#: Where the benchmarks' and studies' findings are told, quoting their results files.
+RESULTS_PAGE = REPO / "benchmarks" / "README.md"
 
 
 def load_script(name: str) -> ModuleType:
@@ -159,17 +161,17 @@ def test_bert_settings_quick_reads_no_test_split_and_writes_its_results(tmp_path
 
 
 # --- the README quotes the files the committed commands wrote ----------------------------------------
-def readme_text() -> str:
-    return " ".join(README.read_text(encoding="utf-8").split())
+def readme_text(page: Path = README) -> str:
+    return " ".join(page.read_text(encoding="utf-8").split())
 
 
-def test_readme_quotes_the_study():
-    """The README's study table and training times are results/paper's figures."""
+def test_results_page_quotes_the_study():
+    """The results page's study table and training times are results/paper's figures."""
     paper = REPO / "results" / "paper"
     t3 = pd.read_csv(paper / "table3_validation.csv").set_index("model")
     m1 = pd.read_csv(paper / "m1_on_test.csv").set_index("model")
     novel = pd.read_csv(paper / "novel.csv").set_index("model")
-    readme = readme_text()
+    readme = readme_text(RESULTS_PAGE)
     pct = "{:.2%}".format
     assert f"| LSTM-M1 / BERT-M1, test Acc_inst | {pct(m1.Acc_inst['LSTM-M1'])} / {pct(m1.Acc_inst['BERT-M1'])} |" in readme
     assert (f"| LSTM-M1 / BERT-M1, validation Acc_inst | {pct(t3.Acc_inst['LSTM-M1'])} / "
@@ -184,10 +186,10 @@ def test_readme_quotes_the_study():
     assert f"{minutes:.0f} min on the 2-core CPU" in readme
 
 
-def test_readme_quotes_the_field_ablation():
+def test_results_page_quotes_the_field_ablation():
     """The README's 'What each step bought' figures are results/field/ablation.csv's."""
     ablation = pd.read_csv(REPO / "results" / "field" / "ablation.csv").set_index("model")
-    readme = readme_text()
+    readme = readme_text(RESULTS_PAGE)
     pct = "{:.1%}".format
 
     def pair(model: str, field_set: str, reading: str) -> str:

@@ -31,6 +31,8 @@ from drywall_lab.machine import (
 
 REPO = Path(__file__).resolve().parent.parent
 README = REPO / "README.md"
+#: Where the benchmarks' findings are told, quoting their results files.
+RESULTS_PAGE = REPO / "benchmarks" / "README.md"
 
 X86 = """processor\t: 0
 vendor_id\t: AuthenticAMD
@@ -142,7 +144,7 @@ def test_timing_script_help(name: str, capsys) -> None:
 
 
 @pytest.mark.parametrize("name, argv", [("latency", []), ("placement", []), ("bert_settings", []), ("decision", []),
-                                        ("field_seeds", []), ("second_opinion", ["--check", "models/minilm_field"])])
+                                        ("field_seeds", [])])
 def test_quick_figures_never_replace_the_recorded_results(name: str, argv: list[str], capsys) -> None:
     """Every benchmark with ``--quick`` (benchmarks/results_file.py) stops before anything runs unless given its own
     ``--out``, and its help names the recorded results file it would otherwise write."""
@@ -237,49 +239,18 @@ def last_summary(text: str, pattern: str) -> str:
     return found[-1]
 
 
-def test_readme_quotes_the_latency_results() -> None:
+def test_results_page_quotes_the_latency_results() -> None:
     text = (REPO / "benchmarks" / "results" / "latency.md").read_text(encoding="utf-8")
     assert "Written by `python benchmarks/latency.py" in text and "--quick" not in text.split("\n", 3)[2]
-    line = last_summary(text, r"lstm_p50_ms=\S+ lstm_decided_p50_ms=\S+ minilm_p50_ms=\S+ bert_base_p50_ms=\S+")
-    assert f"`{line}`" in README.read_text(encoding="utf-8")
+    line = last_summary(text, r"lstm_p50_ms=\S+ lstm_decided_p50_ms=\S+ minilm_p50_ms=\S+ bert_base_p50_ms=\S+(?: lstm_read_p50_ms=\S+)?")
+    assert f"`{line}`" in RESULTS_PAGE.read_text(encoding="utf-8")
 
 
-def test_readme_quotes_the_placement_results() -> None:
+def test_results_page_quotes_the_placement_results() -> None:
     text = (REPO / "benchmarks" / "results" / "placement.md").read_text(encoding="utf-8")
     assert "Written by `python benchmarks/placement.py" in text and "--quick" not in text.split("\n", 3)[2]
     line = last_summary(text, r"success_rate=\S+ max_pos_err_mm=\S+ max_ang_err_deg=\S+ realtime_factor=\S+")
-    assert f"`{line}`" in README.read_text(encoding="utf-8")
-
-
-def test_second_opinion_quick_writes_its_results(tmp_path, capsys) -> None:
-    """benchmarks/second_opinion.py chooses on the generated splits and measures every rule on the field sets;
-    its rule ``none`` is exactly what ``run`` does (benchmarks/results/field.md's figures)."""
-    from drywall_lab.nlu import DEFAULT_TAGGER_DIR
-
-    out = tmp_path / "second_opinion.md"
-    assert load_script("second_opinion").main(["--check", str(DEFAULT_TAGGER_DIR), "--quick", "--out", str(out)]) == 0
-    text = out.read_text(encoding="utf-8")
-    assert f"**Command:** `python benchmarks/second_opinion.py --check {DEFAULT_TAGGER_DIR} --quick --out {out}`" in text
-    assert f"- cpu: {describe_machine().cpu}" in text
-    chosen = re.search(r"chosen=(\w+)", text).group(1)
-    assert chosen in ("none", "command", "any")
-    costs = {rule: float(c) for rule, c in re.findall(r"mean cost (\w+): (\S+)", text)}
-    assert set(costs) == {"none", "command", "any"} and costs[chosen] == min(costs.values())
-    field = (REPO / "benchmarks" / "results" / "field.md").read_text(encoding="utf-8")
-    for figure in ("accuracy", "wrong_action_rate"):
-        recorded = re.search(rf"data_field_{figure}=(\S+)", field).group(1)
-        assert f"data_field_none_{figure}={recorded}" in text
-    assert f"chosen={chosen}" in capsys.readouterr().out
-
-
-def test_readme_quotes_the_second_opinion_results() -> None:
-    text = (REPO / "benchmarks" / "results" / "second_opinion.md").read_text(encoding="utf-8")
-    assert "**Command:** `python benchmarks/second_opinion.py --check" in text and "--quick" not in text
-    summary = text.split("## Summary")[1].split("```")[1].split()
-    readme = " ".join(README.read_text(encoding="utf-8").split())
-    assert f"it chose `{summary[0].split('=')[1]}`" in readme
-    for line in summary[1:]:
-        assert f"`{line}" in readme or f" {line}`" in readme, line
+    assert f"`{line}`" in RESULTS_PAGE.read_text(encoding="utf-8")
 
 
 def test_field_seeds_quick_trains_missing_seeds_and_scores_each(tmp_path) -> None:
@@ -329,11 +300,11 @@ def test_field_seeds_trains_another_averaging_only_apart(capsys) -> None:
     assert "--swa-epochs" not in script.train_command(0, Path("out"), False, script.recipe_with(0))
 
 
-def test_readme_quotes_the_field_seeds_results() -> None:
+def test_results_page_quotes_the_field_seeds_results() -> None:
     text = (REPO / "benchmarks" / "results" / "field_seeds.md").read_text(encoding="utf-8")
     assert "**Command:** `python benchmarks/field_seeds.py" in text and "--quick" not in text
     assert re.search(r"^shipped\b.*\bTrue\b", text, re.M), "one of the seeds must be the shipped tagger, byte for byte"
-    readme = " ".join(README.read_text(encoding="utf-8").split())
+    readme = " ".join(RESULTS_PAGE.read_text(encoding="utf-8").split())
     for line in text.split("## Summary")[1].split("```")[1].split():
         if "_mean=" in line or "_max=" in line:
             assert line in readme, line
@@ -346,43 +317,28 @@ def test_readme_quotes_the_field_seeds_results() -> None:
             assert line in readme, line
 
 
-def _hand_written_table(text: str) -> dict[tuple[str, str], dict[str, float]]:
-    """(set, rule) -> figures, from a second_opinion results file's table of the hand-written field sets."""
-    block = text.split("## Measured on the hand-written field sets")[1].split("```")[1].strip().splitlines()
-    header = block[0].split()
-    rows = {}
-    for line in block[1:]:
-        cells = line.split()
-        rows[(cells[0], cells[1])] = {name: float(v) for name, v in zip(header[2:], cells[2:])}
-    return rows
+def test_readme_glance_table_is_the_field_benchmarks() -> None:
+    """Each hand-written set's row of the README's 'Results at a glance' is benchmarks/results/field.md's summary,
+    and every set that benchmark plays has a row."""
+    field = (REPO / "benchmarks" / "results" / "field.md").read_text(encoding="utf-8").split("## Summary")[1]
+    figures = dict(re.findall(r"(\w+)=(\S+)", field))
+    names = sorted({k.rsplit("_accuracy", 1)[0] for k in figures if k.endswith("_accuracy")})
+    assert {"data_field", "first_sight_2026_12_05"} <= set(names)
+    lines = README.read_text(encoding="utf-8").splitlines()
+    for name in names:
+        path = {"data_field": "data/field", "shared_field": "../shared/field"}.get(
+            name, "data/first_sight/" + name.removeprefix("first_sight_").replace("_", "-", 2))
+        row = [line for line in lines if line.startswith(f"| `{path}`")]
+        assert len(row) == 1, path
+        cells = [c.strip() for c in row[0].strip("|").split("|")]
+        assert cells[1:3] == [f"{float(figures[name + '_accuracy']):.1%}",
+                              f"{float(figures[name + '_wrong_action_rate']):.1%}"], path
 
 
-def test_a_second_seed_as_check_is_recorded_as_the_readme_says() -> None:
-    """README: another seed of the shipped recipe (seed 2, not a member of the shipped ensemble) as a second opinion
-    is not chosen on the generated splits, and its rule `command` turns no wrong action on either field set into a
-    question, and costs accuracy on shared/field, none on data/field (benchmarks/results/second_opinion_seed2.md)."""
-    text = (REPO / "benchmarks" / "results" / "second_opinion_seed2.md").read_text(encoding="utf-8")
-    assert "--check build/field_seeds/seed2" in text and "--quick" not in text
-    readme = " ".join(README.read_text(encoding="utf-8").split())
-    assert ("its rule `command` turns no wrong action on data/field or on shared/field into a question (the shipped "
-            "tagger makes none there), and costs accuracy on shared/field") in readme
-    assert "chosen=none" in text.split("## Summary")[1]
-    table = _hand_written_table(text)
-    steps = {"data_field": 226, "shared_field": 170}
-    for name, n in steps.items():
-        none, command = table[(name, "none")], table[(name, "command")]
-        assert round((none["wrong_action_rate"] - command["wrong_action_rate"]) * n) == 0
-        assert command["accuracy"] <= none["accuracy"]
-    assert table[("shared_field", "command")]["accuracy"] < table[("shared_field", "none")]["accuracy"]
-    assert table[("data_field", "command")]["accuracy"] == table[("data_field", "none")]["accuracy"]
-    shared = f"({table[('shared_field', 'command')]['accuracy']:.1%} against {table[('shared_field', 'none')]['accuracy']:.1%}"
-    assert shared in readme
-
-
-def test_readme_quotes_the_field_and_ensemble_results() -> None:
+def test_results_page_quotes_the_field_and_ensemble_results() -> None:
     """The README's field figures are benchmarks/results/field.md's summary, and its ensemble figures
     benchmarks/results/ensemble.md's."""
-    readme = " ".join(README.read_text(encoding="utf-8").split())
+    readme = " ".join(RESULTS_PAGE.read_text(encoding="utf-8").split())
     field = (REPO / "benchmarks" / "results" / "field.md").read_text(encoding="utf-8")
     assert "**Command:** `python benchmarks/field.py`" in field
     for line in field.split("## Summary")[1].split("```")[1].split():

@@ -1113,33 +1113,23 @@ def render(ch: Chooser, sentences: Sentences, spoken: bool,
     ``shout``: an impatient boss) or in Title Case (a checklist, a formal note)."""
     casing = "lower" if spoken else ("upper" if shout and ch.chance(0.3) else G._weighted(ch.rng, CASING))
     keep_punctuation = not spoken and ch.rng.random() < 0.85
-    pieces: list[str] = []
-    words: list[str] = []
-    tags: list[str] = []
-    coref: list[str] = []
-    for sentence in sentences:
-        first = True
-        for tok in sentence:
-            if not tok.is_word:
-                if keep_punctuation and pieces:
-                    pieces[-1] += tok.word
-                continue
-            w = tok.word
-            if casing == "lower":
-                w = w.lower()
-            elif casing == "upper":
-                w = w.upper()
-            elif (first and casing == "typed") or casing == "title":
-                w = w[0].upper() + w[1:]
-            first = False
-            clean = tokenize(w)
-            if len(clean) != 1:
-                raise ValueError(f"{w!r} is not one word when tokenized: {clean}")
-            words.append(clean[0])
-            tags.append(tok.tag)
-            coref.append(tok.coref)
-            pieces.append(w)
-    return " ".join(pieces), words, tags, coref
+
+    def cased(w: str, first: bool) -> str:
+        if casing == "lower":
+            return w.lower()
+        if casing == "upper":
+            return w.upper()
+        if (first and casing == "typed") or casing == "title":
+            return w[0].upper() + w[1:]
+        return w
+
+    def one_word(w: str) -> str:
+        clean = tokenize(w)
+        if len(clean) != 1:
+            raise ValueError(f"{w!r} is not one word when tokenized: {clean}")
+        return clean[0]
+
+    return G.join_tokens(sentences, keep_punctuation, cased, one_word)
 
 
 def read_through_front_end(said: tuple[str, list[str], list[str], list[str]]) -> tuple[str, list[str], list[str], list[str]]:
@@ -1157,36 +1147,25 @@ def read_through_front_end(said: tuple[str, list[str], list[str], list[str]]) ->
 # --- episodes and splits ------------------------------------------------------------------------------
 def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict]:
     ch = Chooser(rng, novel=(split == "novel"))
-    rows: list[dict] = []
-    episode_no = 0
-    while len(rows) < n:
-        ep = G.Episode(site.fresh())
-        length = rng.randint(1, 8)
-        for step in range(length):
-            if len(rows) >= n:
-                break
-            refuse = rng.random() < FIELD_REFUSAL_RATE
-            meaning = (G.refusal_meaning if refuse else G.command_meaning)(rng, ep, FIELD_WEIGHTS)
-            if meaning is None:
-                break
-            register = G._weighted(rng, REGISTERS)
-            spoken = register in ("speech", "texting") or (register in ("radio", "correction") and rng.random() < 0.5) \
-                or (register in ("explain", "boss") and rng.random() < 0.3)
-            sentences = Speaker(ch, meaning, ep, register).sentences()
-            sentences = add_noise(ch, sentences, spoken)
-            if register == "texting":
-                sentences = texting_forms(ch, sentences)
-            channels = C.choose_channels(rng, novel=split == "novel")
-            sentences = C.apply_channels(ch, sentences, channels)
-            said = read_through_front_end(render(ch, sentences, spoken, shout=register == "boss"))
-            if not said[1]:
-                continue
-            rows.append(G.corpus_row(f"field-{split}-{len(rows):05d}", said, len(sentences),
-                                     f"field-{split}-ep{episode_no:05d}", step, ep, meaning, register=register,
-                                     channels=list(channels)))
-            ep.accept(meaning)
-        episode_no += 1
-    return rows
+
+    def say(ep: G.Episode, meaning: G.Meaning, row_no: int, episode_no: int, step: int) -> dict | None:
+        """One step in a register, with noise and channels, read through the front end (None: no words left)."""
+        register = G._weighted(rng, REGISTERS)
+        spoken = register in ("speech", "texting") or (register in ("radio", "correction") and rng.random() < 0.5) \
+            or (register in ("explain", "boss") and rng.random() < 0.3)
+        sentences = Speaker(ch, meaning, ep, register).sentences()
+        sentences = add_noise(ch, sentences, spoken)
+        if register == "texting":
+            sentences = texting_forms(ch, sentences)
+        channels = C.choose_channels(rng, novel=split == "novel")
+        sentences = C.apply_channels(ch, sentences, channels)
+        said = read_through_front_end(render(ch, sentences, spoken, shout=register == "boss"))
+        if not said[1]:
+            return None
+        return G.corpus_row(f"field-{split}-{row_no:05d}", said, len(sentences), f"field-{split}-ep{episode_no:05d}",
+                            step, ep, meaning, register=register, channels=list(channels))
+
+    return G.episode_rows(rng, site, n, lambda: rng.randint(1, 8), FIELD_REFUSAL_RATE, FIELD_WEIGHTS, say)
 
 
 def generate_field_split(split: str, n: int | None = None, seed: int = FIELD_SEED, site: Site | None = None) -> list[dict]:

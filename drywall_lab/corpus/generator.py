@@ -19,6 +19,7 @@ from __future__ import annotations
 import random
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from typing import Callable, Iterable
 
 from drywall_lab.corpus import phrases as P
 from drywall_lab.corpus.markup import Phrase, Token, parse, plain, tagged
@@ -375,16 +376,27 @@ def _relative_phrase(ch: P.Chooser, bank: list[str], noun_slot: str, noun: Phras
     return parse(template, **{noun_slot: noun}, dir=direction, anchor=anchor())
 
 
+def _by_id_or_size(ch: P.Chooser, ref: TargetRef, noun: Phrase, by_id: list[str], by_size: list[str],
+                   by_size_length_first: list[str], by_size_turned: list[str]) -> Phrase | None:
+    """The target panel said by its id or its size (``ref.kind`` "id" or "size") from these banks, the size's
+    bank by the order its numbers are said in and by whether the panel is turned; None for the other kinds."""
+    if ref.kind == "id":
+        return ch.say(by_id, noun=noun, id=_ids(ref.panel_id, "ID_wall"))
+    if ref.kind == "size":
+        bank = by_size_length_first if ref.length_first else by_size
+        if ref.size[0] > ref.size[1]:
+            bank = by_size_turned
+        return ch.say(bank, noun=noun, **_size_numbers(ch, ref))
+    return None
+
+
 def target_phrase(ch: P.Chooser, ref: TargetRef) -> Phrase:
     """A noun phrase for the target panel: "the full-size drywall"."""
     noun = ch.say(P.PANEL_NOUNS)
-    if ref.kind == "id":
-        return ch.say(P.TARGET_BY_ID, noun=noun, id=_ids(ref.panel_id, "ID_wall"))
-    if ref.kind == "size":
-        bank = P.TARGET_BY_SIZE_LENGTH_FIRST if ref.length_first else P.TARGET_BY_SIZE
-        if ref.size[0] > ref.size[1]:
-            bank = P.TARGET_BY_SIZE_TURNED
-        return ch.say(bank, noun=noun, **_size_numbers(ch, ref))
+    said = _by_id_or_size(ch, ref, noun, P.TARGET_BY_ID, P.TARGET_BY_SIZE, P.TARGET_BY_SIZE_LENGTH_FIRST,
+                          P.TARGET_BY_SIZE_TURNED)
+    if said is not None:
+        return said
     if ref.kind == "width":
         return ch.say(P.TARGET_BY_WIDTH, noun=noun, **_size_numbers(ch, ref))
     if ref.kind == "length":
@@ -405,13 +417,10 @@ def target_phrase(ch: P.Chooser, ref: TargetRef) -> Phrase:
 def target_sentence(ch: P.Chooser, ref: TargetRef) -> Phrase | None:
     """A sentence that says which panel on its own: "The width is 4 and the length is 8."; None if none fits."""
     noun = ch.say(P.PANEL_NOUNS)
-    if ref.kind == "id":
-        return ch.say(P.TARGET_ID_SENTENCE, noun=noun, id=_ids(ref.panel_id, "ID_wall"))
-    if ref.kind == "size":
-        bank = P.TARGET_SIZE_SENTENCE_LENGTH_FIRST if ref.length_first else P.TARGET_SIZE_SENTENCE
-        if ref.size[0] > ref.size[1]:
-            bank = P.TARGET_SIZE_SENTENCE_TURNED
-        return ch.say(bank, noun=noun, **_size_numbers(ch, ref))
+    said = _by_id_or_size(ch, ref, noun, P.TARGET_ID_SENTENCE, P.TARGET_SIZE_SENTENCE,
+                          P.TARGET_SIZE_SENTENCE_LENGTH_FIRST, P.TARGET_SIZE_SENTENCE_TURNED)
+    if said is not None:
+        return said
     if ref.kind == "standard":
         return ch.say(P.TARGET_STANDARD_SENTENCE, noun=noun)
     if ref.kind == "same":
@@ -547,9 +556,11 @@ def sentences_for(ch: P.Chooser, meaning: Meaning, n_sentences: int) -> list[Phr
     return {1: one_sentence, 2: two_sentences, 3: three_sentences, 4: four_sentences}[n_sentences]()
 
 
-def render(ch: P.Chooser, sentences: list[Phrase]) -> tuple[str, list[str], list[str], list[str]]:
-    """Text, words, tags and co-reference tags, typed style or speech-recogniser style."""
-    asr = ch.chance(0.4)  # lowercase, no punctuation
+def join_tokens(sentences: Iterable[Phrase], keep_punctuation: bool, cased: Callable[[str, bool], str],
+                word_of: Callable[[str], str] = str) -> tuple[str, list[str], list[str], list[str]]:
+    """Text, words, tags and co-reference tags of tokenised sentences: each word written as ``cased(word, whether
+    it begins its sentence)`` and read as ``word_of`` that; punctuation glued to the word before it when
+    ``keep_punctuation``, dropped otherwise."""
     words: list[str] = []
     tags: list[str] = []
     coref: list[str] = []
@@ -558,20 +569,29 @@ def render(ch: P.Chooser, sentences: list[Phrase]) -> tuple[str, list[str], list
         first = True
         for tok in sentence:
             if not tok.is_word:
-                if not asr and pieces:
+                if keep_punctuation and pieces:
                     pieces[-1] += tok.word
                 continue
-            w = tok.word.lower() if asr else tok.word
-            if first and not asr:
-                w = w[0].upper() + w[1:]
+            w = cased(tok.word, first)
             first = False
-            if not asr and w == "i":
-                w = "I"
-            words.append(w)
+            words.append(word_of(w))
             tags.append(tok.tag)
             coref.append(tok.coref)
             pieces.append(w)
     return " ".join(pieces), words, tags, coref
+
+
+def render(ch: P.Chooser, sentences: list[Phrase]) -> tuple[str, list[str], list[str], list[str]]:
+    """Text, words, tags and co-reference tags, typed style or speech-recogniser style."""
+    asr = ch.chance(0.4)  # lowercase, no punctuation
+
+    def cased(w: str, first: bool) -> str:
+        if asr:
+            return w.lower()
+        w = w[0].upper() + w[1:] if first else w
+        return "I" if w == "i" else w
+
+    return join_tokens(sentences, not asr, cased)
 
 
 # --- episodes and splits ---------------------------------------------------------------
@@ -613,30 +633,54 @@ def generate_split(split: str, n: int, seed: int = SEED, site: Site | None = Non
     raise RuntimeError(f"{split}: no draw contained every meaning; missing {sorted(missing_meanings(rows))}")
 
 
+#: What ``episode_rows`` asks for each step: ``say(episode, meaning, row number, episode number, step)``, the
+#: step's corpus row, or None when the step is not said (the episode then goes on as if it had not been asked).
+SayStep = Callable[["Episode", Meaning, int, int, int], "dict | None"]
+
+
+def episode_rows(rng: random.Random, site: Site, n: int, draw_length: Callable[[], int], refusal_rate: float,
+                 weights: MeaningWeights, say: SayStep) -> list[dict]:
+    """``n`` corpus rows from episodes on fresh sites, as both corpora draw them.
+
+    Each episode is at most ``draw_length()`` steps long; each step means a command, or (with probability
+    ``refusal_rate``) an instruction to refuse (``command_meaning``, ``refusal_meaning`` with ``weights``), and an
+    episode ends early when no meaning is feasible. ``say`` turns a step into its row; a step said is accepted
+    into the episode.
+    """
+    rows: list[dict] = []
+    episode_no = 0
+    while len(rows) < n:
+        ep = Episode(site.fresh())
+        length = draw_length()
+        for step in range(length):
+            if len(rows) >= n:
+                break
+            refuse = rng.random() < refusal_rate
+            meaning = (refusal_meaning if refuse else command_meaning)(rng, ep, weights)
+            if meaning is None:
+                break
+            row = say(ep, meaning, len(rows), episode_no, step)
+            if row is None:
+                continue
+            rows.append(row)
+            ep.accept(meaning)
+        episode_no += 1
+    return rows
+
+
 def _generate_split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict]:
     ch = P.Chooser(rng, novel=(split == "novel"))
     quota = SENTENCE_QUOTAS[split]
     counts = [k for k, v in quota.items() for _ in range(v)]
     counts += [2] * (n - len(counts))
     rng.shuffle(counts)
-    rows: list[dict] = []
-    episode_no = 0
-    while len(rows) < n:
-        ep = Episode(site.fresh())
-        length = rng.choice([1, 2, 2, 3, 3, 4, 5, 6])
-        for step in range(length):
-            if len(rows) >= n:
-                break
-            refuse = rng.random() < REFUSAL_RATE
-            meaning = refusal_meaning(rng, ep) if refuse else command_meaning(rng, ep)
-            if meaning is None:
-                break
-            said = render(ch, sentences_for(ch, meaning, counts[len(rows)]))
-            rows.append(corpus_row(f"{split}-{len(rows):04d}", said, counts[len(rows)], f"{split}-ep{episode_no:04d}",
-                                   step, ep, meaning))
-            ep.accept(meaning)
-        episode_no += 1
-    return rows
+
+    def say(ep: Episode, meaning: Meaning, row_no: int, episode_no: int, step: int) -> dict:
+        said = render(ch, sentences_for(ch, meaning, counts[row_no]))
+        return corpus_row(f"{split}-{row_no:04d}", said, counts[row_no], f"{split}-ep{episode_no:04d}", step, ep,
+                          meaning)
+
+    return episode_rows(rng, site, n, lambda: rng.choice([1, 2, 2, 3, 3, 4, 5, 6]), REFUSAL_RATE, PAPER_WEIGHTS, say)
 
 
 def generate_corpus(seed: int = SEED, sizes: dict[str, int] | None = None) -> dict[str, list[dict]]:

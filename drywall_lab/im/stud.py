@@ -31,12 +31,8 @@ from drywall_lab.site import Stud
 
 def _stud_at(ctx: MappingContext, index: int, said: str) -> Stud:
     studs = ctx.site.studs
-    if not 0 <= index < len(studs):
-        raise Refusal(
-            "off_the_end",
-            f"There is no stud {said}: the wall has {len(studs)} studs, {studs[0].stud_id} to {studs[-1].stud_id}.",
-        )
-    return studs[index]
+    return W.on_the_row(studs, index, f"There is no stud {said}: the wall has {len(studs)} studs, "
+                                      f"{studs[0].stud_id} to {studs[-1].stud_id}.")
 
 
 # --- rule 1 ---------------------------------------------------------------------------
@@ -45,12 +41,7 @@ def stud_by_id(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
     said = ti.words_with("ID_stud")
     if not said:
         return None
-    ids = W.ids_in(said)
-    if not ids:
-        raise Refusal("undetermined", f"Which stud: you said {W.quote(said)}, and I did not hear a stud number in it.")
-    if len(ids) > 1:
-        raise Refusal("undetermined", f"Two studs are named, {' and '.join(ids)}: which one should I use?")
-    stud = ctx.site.stud(ids[0])  # unknown_id for an id not on this wall
+    stud = ctx.site.stud(W.one_id(said, "stud", "use"))  # unknown_id for an id not on this wall
     also = _position_said_too(ti, ctx)
     if also is not None and also.value != stud.stud_id:
         raise Refusal("undetermined", f"Stud {stud.stud_id} and {W.quote(ti.words_with('St_loc1'))} (stud "
@@ -122,14 +113,10 @@ def stud_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> Dec
         return None
     direction_words = ti.words_with("St_loc1")
     quoted = W.quote(direction_words)
-    count = W.one_count(direction_words, quoted, "stud")
-    if W.says_same(direction_words):
-        if count not in (None, 0):
-            raise Refusal("undetermined", f"{quoted} says both the same stud and {W.places(count)} away: which stud?")
+    direction, count = W.relative_step(direction_words, quoted, "stud")
+    if direction is None:  # "the same stud as 500104": the anchor itself
         anchor, anchor_text = _anchor(ti, ctx)
         return Decision(anchor.stud_id, f"{quoted} as {anchor_text} -> stud {anchor.stud_id}")
-    direction = W.direction_of(direction_words, quoted, "stud")
-    count = 1 if count is None else count
     anchor, anchor_text = _anchor(ti, ctx)
     where = f"{W.places(count)} to the {direction} of {anchor_text}"
     stud = _stud_at(ctx, anchor.index + (count if direction == "right" else -count), where)
@@ -145,7 +132,6 @@ STUD_RULES: tuple[Rule, ...] = (
 
 def resolve_stud(ti: TaggedInstruction, ctx: MappingContext, trace: Trace | None = None) -> str:
     """The id of the destination stud, trying rules 1-3 in order; a ``Refusal`` otherwise."""
-    trace = trace if trace is not None else Trace()
     if ti.has("St_loc2"):
         message = (f"{W.quote(ti.words_with('St_loc2'))} says which stud to count from, but not how far or in "
                    "which direction: which stud should it go on?")

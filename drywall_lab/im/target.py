@@ -63,12 +63,7 @@ def target_by_id(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
     said = ti.words_with("ID_wall")
     if not said:
         return None
-    ids = W.ids_in(said)
-    if not ids:
-        raise Refusal("undetermined", f"Which panel: you said {W.quote(said)}, and I did not hear a panel number in it.")
-    if len(ids) > 1:
-        raise Refusal("undetermined", f"Two panels are named, {' and '.join(ids)}: which one should I pick?")
-    panel = ctx.site.panel(ids[0])  # unknown_id for an id not on this site
+    panel = ctx.site.panel(W.one_id(said, "panel", "pick"))  # unknown_id for an id not on this site
     return Decision(panel.drywall_id, f"panel {panel.drywall_id} ({panel.stack} stack, {_size_text(panel.size_ft)})")
 
 
@@ -162,12 +157,8 @@ def _named_otherwise(ti: TaggedInstruction) -> bool:
 
 # --- rule 4 ---------------------------------------------------------------------------
 def _stack_at(ctx: MappingContext, index: int, said: str) -> str:
-    if not 0 <= index < len(STACK_NAMES):
-        raise Refusal(
-            "off_the_end",
-            f"There is no stack {said}: there are only {len(STACK_NAMES)} stacks ({', '.join(STACK_NAMES)}).",
-        )
-    return STACK_NAMES[index]
+    return W.on_the_row(STACK_NAMES, index, f"There is no stack {said}: there are only {len(STACK_NAMES)} stacks "
+                                            f"({', '.join(STACK_NAMES)}).")
 
 
 def target_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
@@ -191,14 +182,8 @@ def target_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> D
     direction_words = ti.words_with("Dw_loc1")
     anchor_words = ti.words_with("Dw_loc2")
     quoted = W.quote(direction_words)
-    count = W.one_count(direction_words, quoted, "stack")
-    if W.says_same(direction_words):
-        if count not in (None, 0):
-            raise Refusal("undetermined", f"{quoted} says both the same stack and {W.places(count)} away: which stack?")
-        direction, count = "right", 0
-    else:
-        direction = W.direction_of(direction_words, quoted, "stack")
-        count = 1 if count is None else count
+    direction, count = W.relative_step(direction_words, quoted, "stack")
+    direction = direction or "right"  # "the same stack as 500301": zero places, either way
     ids = W.ids_in(anchor_words)
     if len(ids) > 1:
         raise Refusal("undetermined", f"Two anchor panels are named, {' and '.join(ids)}: which one?")
@@ -230,7 +215,6 @@ TARGET_RULES: tuple[Rule, ...] = (
 
 def resolve_target(ti: TaggedInstruction, ctx: MappingContext, trace: Trace | None = None) -> str:
     """The id of the panel the instruction means, trying rules 1-5 in order; a ``Refusal`` otherwise."""
-    trace = trace if trace is not None else Trace()
     if ti.has("Dw_loc2"):
         message = (f"{W.quote(ti.words_with('Dw_loc2'))} says which panel to count from, but not in which "
                    "direction: which panel should I pick?")

@@ -172,13 +172,15 @@ class Trace:
 Rule = tuple[str, tuple[str, ...], Callable[[TaggedInstruction, Any], "Decision | None"]]
 
 
-def first_decision(stage: str, rules: Sequence[Rule], ti: TaggedInstruction, ctx: Any, trace: Trace,
+def first_decision(stage: str, rules: Sequence[Rule], ti: TaggedInstruction, ctx: Any, trace: Trace | None,
                    nothing_applies: str) -> Decision:
-    """Try ``rules`` (name, tags it reads, function) in order, record each in ``trace``, return the first decision.
+    """Try ``rules`` (name, tags it reads, function) in order, record each in ``trace`` (None: a trace of its own,
+    not kept), return the first decision.
 
     A rule's ``Refusal`` is recorded and raised again; when no rule applies, the
     ``undetermined`` refusal with the message ``nothing_applies`` is.
     """
+    trace = trace if trace is not None else Trace()
     for name, tags, rule in rules:
         try:
             decision = rule(ti, ctx)

@@ -15,10 +15,12 @@ from __future__ import annotations
 
 import re
 from functools import lru_cache
-from typing import Iterable, Sequence
+from typing import Iterable, Sequence, TypeVar
 
 from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_WORDS
 from drywall_lab.errors import Refusal
+
+_T = TypeVar("_T")
 
 #: Number words a worker may say, beyond the phrase banks' (which stop at twelve): a count past the
 #: wall's end must be read, so that it is refused as ``off_the_end`` instead of dropped.
@@ -186,6 +188,29 @@ def sides_in(words: Iterable[str]) -> set[str]:
         elif w in RIGHT_WORDS:
             sides.add("right")
     return sides
+
+
+def relative_step(words: Sequence[str], quoted: str, what: str) -> tuple[str | None, int]:
+    """(direction, count) of a relative position's direction words ``words`` (``quoted``): "two to the left" is
+    ("left", 2), the count 1 when none is said; "the same" is (None, 0), the anchor itself. A count beside "same",
+    two counts, or no single direction are ``undetermined`` (``one_count``, ``direction_of``)."""
+    count = one_count(words, quoted, what)
+    if says_same(words):
+        if count not in (None, 0):
+            raise Refusal("undetermined", f"{quoted} says both the same {what} and {places(count)} away: which {what}?")
+        return None, 0
+    return direction_of(words, quoted, what), 1 if count is None else count
+
+
+def one_id(said: Sequence[str], what: str, verb: str) -> str:
+    """The one id in ``said``, words tagged as naming a ``what`` ("stud", "panel") by its id; ``undetermined`` when
+    they hold none, or several (the question ends "which one should I ``verb``?")."""
+    ids = ids_in(said)
+    if not ids:
+        raise Refusal("undetermined", f"Which {what}: you said {quote(said)}, and I did not hear a {what} number in it.")
+    if len(ids) > 1:
+        raise Refusal("undetermined", f"Two {what}s are named, {' and '.join(ids)}: which one should I {verb}?")
+    return ids[0]
 
 
 def direction_of(words: Sequence[str], quoted: str, what: str) -> str:
@@ -392,6 +417,14 @@ def ids_in(words: Iterable[str]) -> list[str]:
             out.append(w)
     finish()
     return out
+
+
+def on_the_row(row: Sequence[_T], index: int, off_the_end: str) -> _T:
+    """``row[index]`` (a stud of the wall, a stack) for an index on the row, never counted round from the other end;
+    past either end the ``off_the_end`` refusal with the message ``off_the_end``."""
+    if not 0 <= index < len(row):
+        raise Refusal("off_the_end", off_the_end)
+    return row[index]
 
 
 def places(count: int) -> str:

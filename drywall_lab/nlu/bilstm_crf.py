@@ -61,18 +61,8 @@ from torchcrf import CRF
 from tqdm.auto import tqdm
 
 from drywall_lab.corpus.tags import TAGS
-from drywall_lab.nlu.base import (
-    DEFAULT_SEED,
-    KBest,
-    Sentences,
-    TagConfidence,
-    Tagger,
-    TaggerLoadError,
-    check_k,
-    check_sentences,
-    resolve_device,
-    seed_everything,
-)
+from drywall_lab.nlu.base import (KBest, Sentences, TagConfidence, Tagger, TaggerLoadError, check_k,
+                                   check_sentences)
 from drywall_lab.nlu.metrics import acc_inst, acc_word
 
 WEIGHTS_FILE = "weights.safetensors"
@@ -389,6 +379,37 @@ def crf_confidence(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor,
     return marginals, _kbest(*parts, k, log_z)
 
 
+#: Batches of word lists as ``BiLstmCrfTagger._batches`` makes them: (indices, emissions, mask).
+CrfBatches = Iterable[tuple[Sequence[int], torch.Tensor, torch.Tensor]]
+
+
+def no_confidences(n: int, labels: Sequence[str]) -> list[TagConfidence]:
+    """What ``predict_confidence`` gives each of ``n`` empty word lists; ``fill_confidence`` replaces the others."""
+    return [TagConfidence([], np.zeros((0, len(labels))), [([], 0.0)]) for _ in range(n)]
+
+
+def viterbi_tags(crf: CRF, batches: CrfBatches, labels: Sequence[str], n: int) -> list[list[str]]:
+    """The Viterbi tags (``crf.decode``) of ``n`` word lists whose non-empty ones ``batches`` holds; ``[]`` for the
+    empty ones."""
+    out: list[list[str]] = [[] for _ in range(n)]
+    with torch.inference_mode():
+        for index, emissions, mask in batches:
+            for i, path in zip(index, crf.decode(emissions, mask=mask)):
+                out[i] = [labels[t] for t in path]
+    return out
+
+
+def crf_confidences(crf: CRF, batches: CrfBatches, sentences: Sequence[Sequence[str]], labels: Sequence[str],
+                    k: int) -> list[TagConfidence]:
+    """``predict_confidence`` of ``sentences`` whose non-empty ones ``batches`` holds (``crf_confidence``)."""
+    out = no_confidences(len(sentences), labels)
+    with torch.inference_mode():
+        for index, emissions, mask in batches:
+            marginals, kbest = crf_confidence(crf, emissions, mask, k)
+            fill_confidence(out, index, sentences, labels, marginals, kbest)
+    return out
+
+
 class BiLstmCrfTagger(Tagger):
     """BiLSTM-CRF with the paper's settings (section "Data Generation and NLU", parameters).
 
@@ -572,16 +593,8 @@ class BiLstmCrfTagger(Tagger):
             return self.network.word_vectors(ids, chars)[0].cpu().numpy()
 
     # -- training -------------------------------------------------------------------------------
-    def fit(
-        self,
-        train_rows: Sequence[Mapping],
-        validation_rows: Sequence[Mapping] | None = None,
-        *,
-        epochs: int | None = None,
-        progress: bool = True,
-        seed: int = DEFAULT_SEED,
-        device: str | None = None,
-    ) -> pd.DataFrame:
+    def _fit(self, train_rows: Sequence[Mapping], validation_rows: Sequence[Mapping] | None, *, epochs: int | None,
+             progress: bool, seed: int, device: str | None) -> pd.DataFrame:
         """Build the vocabulary (and the character vocabulary) from ``train_rows`` and train from scratch with Adam.
 
         Per epoch ``history`` records the mean training loss (minus the CRF
@@ -593,12 +606,8 @@ class BiLstmCrfTagger(Tagger):
         last row's validation figures are the averaged network's, the one kept.
         """
         train_rows, gold, validation_rows, validation_gold, epochs = self._fit_input(
-            train_rows, validation_rows, epochs, self.epochs
+            train_rows, validation_rows, epochs, self.epochs, device=device, seed=seed
         )
-        if device is not None:
-            self._device = resolve_device(device)
-
-        seed_everything(seed)
         rng = np.random.default_rng(seed)
         key_lists = [[word_key(w, self.id_prefix_digits) for w in r["words"]] for r in train_rows]
         counts = Counter(k for keys in key_lists for k in keys)
@@ -678,19 +687,12 @@ class BiLstmCrfTagger(Tagger):
 
     def predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
         """Tag each word list (Viterbi decoding of the CRF); words as typed, any case."""
-        sentences = check_sentences(sentences)
-        self._check_trained("predict")
-        out: list[list[str]] = [[] for _ in sentences]
-        with torch.inference_mode():
-            for index, emissions, mask in self._batches(sentences, batch_size):
-                for i, path in zip(index, self.network.crf.decode(emissions, mask=mask)):
-                    out[i] = [self.labels[t] for t in path]
-        return out
+        sentences = self._checked(sentences, "predict")
+        return viterbi_tags(self.network.crf, self._batches(sentences, batch_size), self.labels, len(sentences))
 
     def predict_marginals(self, sentences: Sentences, batch_size: int = 64) -> list[np.ndarray]:
         """Per word list, P(word i has label j) as an (n_words, n_labels) array: CRF forward-backward (``crf_marginals``)."""
-        sentences = check_sentences(sentences)
-        self._check_trained("predict_marginals")
+        sentences = self._checked(sentences, "predict_marginals")
         out = [np.zeros((0, len(self.labels))) for _ in sentences]
         with torch.inference_mode():
             for index, emissions, mask in self._batches(sentences, batch_size):
@@ -705,8 +707,7 @@ class BiLstmCrfTagger(Tagger):
         The first is ``predict``'s Viterbi path; an empty word list gives ``[([], 0.0)]``.
         """
         k = check_k(k)
-        sentences = check_sentences(sentences)
-        self._check_trained("predict_kbest")
+        sentences = self._checked(sentences, "predict_kbest")
         out: list[KBest] = [[([], 0.0)] for _ in sentences]
         with torch.inference_mode():
             for index, emissions, mask in self._batches(sentences, batch_size):
@@ -718,14 +719,8 @@ class BiLstmCrfTagger(Tagger):
         """Viterbi tags (the first of the k best), forward-backward marginals and the k best sequences,
         from one pass of the network and one forward-backward (``crf_confidence``)."""
         k = check_k(k)
-        sentences = check_sentences(sentences)
-        self._check_trained("predict_confidence")
-        out = [TagConfidence([], np.zeros((0, len(self.labels))), [([], 0.0)]) for _ in sentences]
-        with torch.inference_mode():
-            for index, emissions, mask in self._batches(sentences, batch_size):
-                marginals, kbest = crf_confidence(self.network.crf, emissions, mask, k)
-                fill_confidence(out, index, sentences, self.labels, marginals, kbest)
-        return out
+        sentences = self._checked(sentences, "predict_confidence")
+        return crf_confidences(self.network.crf, self._batches(sentences, batch_size), sentences, self.labels, k)
 
     # -- saving and loading ----------------------------------------------------------------------
     def _save_weights(self, directory: Path) -> dict[str, Any]:

@@ -50,20 +50,10 @@ from torch.nn.utils.rnn import PackedSequence, pack_padded_sequence, pad_packed_
 from torchcrf import CRF
 
 from drywall_lab.corpus.tags import TAGS
-from drywall_lab.nlu.base import (
-    DEFAULT_SEED,
-    KBest,
-    Sentences,
-    TagConfidence,
-    Tagger,
-    TaggerLoadError,
-    check_k,
-    check_sentences,
-    load_tagger,
-    resolve_device,
-)
-from drywall_lab.nlu.bilstm_crf import (CHAR_KERNEL_SIZE, BiLstmCrfTagger, _forward_backward, _kbest, crf_confidence,
-                                         fill_confidence)
+from drywall_lab.nlu.base import (KBest, Sentences, TagConfidence, Tagger, TaggerLoadError, check_k, load_tagger,
+                                   resolve_device)
+from drywall_lab.nlu.bilstm_crf import (CHAR_KERNEL_SIZE, BiLstmCrfTagger, _forward_backward, _kbest,
+                                         crf_confidences, fill_confidence, no_confidences, viterbi_tags)
 
 MEMBER_DIR = "member{}"
 #: A batch of at most this many words (all sentences together) runs on one intra-op thread (module docstring,
@@ -299,26 +289,14 @@ class CrfEnsembleTagger(Tagger):
 
     def _reference_predict(self, sentences: Sentences, batch_size: int = 64) -> list[list[str]]:
         """``predict`` member by member, decoded by ``torchcrf``."""
-        sentences = check_sentences(sentences)
-        self._check_trained("predict")
-        out: list[list[str]] = [[] for _ in sentences]
-        with torch.inference_mode():
-            for index, emissions, mask in self._batches(sentences, batch_size):
-                for i, path in zip(index, self._crf.decode(emissions, mask=mask)):
-                    out[i] = [self.labels[t] for t in path]
-        return out
+        sentences = self._checked(sentences, "predict")
+        return viterbi_tags(self._crf, self._batches(sentences, batch_size), self.labels, len(sentences))
 
     def _reference_confidence(self, sentences: Sentences, k: int = 5, batch_size: int = 64) -> list[TagConfidence]:
         """``predict_confidence`` member by member, through ``crf_confidence``."""
         k = check_k(k)
-        sentences = check_sentences(sentences)
-        self._check_trained("predict_confidence")
-        out = [TagConfidence([], np.zeros((0, len(self.labels))), [([], 0.0)]) for _ in sentences]
-        with torch.inference_mode():
-            for index, emissions, mask in self._batches(sentences, batch_size):
-                marginals, kbest = crf_confidence(self._crf, emissions, mask, k)
-                fill_confidence(out, index, sentences, self.labels, marginals, kbest)
-        return out
+        sentences = self._checked(sentences, "predict_confidence")
+        return crf_confidences(self._crf, self._batches(sentences, batch_size), sentences, self.labels, k)
 
     # -- the members as one (the fast path) ----------------------------------------------------------------------
     def _fast_batches(self, sentences: Sentences, batch_size: int):
@@ -359,16 +337,8 @@ class CrfEnsembleTagger(Tagger):
             self._crf.to(device)
             self._prepare(device)
 
-    def fit(
-        self,
-        train_rows: Sequence[Mapping],
-        validation_rows: Sequence[Mapping] | None = None,
-        *,
-        epochs: int | None = None,
-        progress: bool = True,
-        seed: int = DEFAULT_SEED,
-        device: str | None = None,
-    ) -> pd.DataFrame:
+    def _fit(self, train_rows: Sequence[Mapping], validation_rows: Sequence[Mapping] | None, *, epochs: int | None,
+             progress: bool, seed: int, device: str | None) -> pd.DataFrame:
         """Train ``n_members`` BiLSTM-CRFs from ``member_settings`` with seeds ``seed``, ``seed + 1``, ...; the
         history is the members' epochs one after the other (``member`` column)."""
         if device is not None:
@@ -388,8 +358,7 @@ class CrfEnsembleTagger(Tagger):
         """The Viterbi tags of the averaged CRF."""
         if self._fused is None:
             return self._reference_predict(sentences, batch_size)
-        sentences = check_sentences(sentences)
-        self._check_trained("predict")
+        sentences = self._checked(sentences, "predict")
         out: list[list[str]] = [[] for _ in sentences]
         for index, emissions, lengths in self._fast_batches(sentences, batch_size):
             for i, path in zip(index, _viterbi(emissions, lengths, *self._scores32)):
@@ -407,9 +376,8 @@ class CrfEnsembleTagger(Tagger):
         if self._fused is None:
             return self._reference_confidence(sentences, k, batch_size)
         k = check_k(k)
-        sentences = check_sentences(sentences)
-        self._check_trained("predict_confidence")
-        out = [TagConfidence([], np.zeros((0, len(self.labels))), [([], 0.0)]) for _ in sentences]
+        sentences = self._checked(sentences, "predict_confidence")
+        out = no_confidences(len(sentences), self.labels)
         for index, emissions, lengths in self._fast_batches(sentences, batch_size):
             e = emissions.astype(np.float64)
             mask = np.arange(e.shape[1])[None, :] < lengths[:, None]

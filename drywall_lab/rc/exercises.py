@@ -19,7 +19,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from drywall_lab.nlu.normalise import normalise
-from drywall_lab.course import ExerciseCheck
+from drywall_lab.exercise import ExerciseCheck
 from drywall_lab.im import ActionHistory, RobotCommand
 from drywall_lab.pipeline import WordTagger
 from drywall_lab.rc.cell import RobotCell
@@ -32,7 +32,7 @@ from drywall_lab.site import Installed, SiteState, default_site
 
 @dataclass
 class SimulationCheck(ExerciseCheck):
-    """An exercise check (``drywall_lab.course.ExerciseCheck``) that also keeps what it simulated."""
+    """An exercise check (``drywall_lab.exercise.ExerciseCheck``) that also keeps what it simulated."""
 
     result: PlacementResult | None = None  #: the placement the check simulated (servo gains)
     run: EpisodeRun | None = None  #: the episode the check simulated (layout)

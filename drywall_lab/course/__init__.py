@@ -1,0 +1,63 @@
+"""Helpers for the course notebooks (issue 13), one module per chapter; every public name is re-exported here,
+so ``from drywall_lab.course import X`` and ``course.X`` work whichever module ``X`` lives in.
+
+- :mod:`~drywall_lab.course.common` (every notebook): :func:`fast_mode`, the one reading of ``DRYWALL_FAST``
+  (README, "Fast mode"; from ``drywall_lab.fast``), :class:`ExerciseCheck` (from ``drywall_lab.exercise``),
+  :func:`percent_table` (tables that read well both as HTML and as text) and the repository's paths.
+- :mod:`~drywall_lab.course.taggers` (02, 03, 07): :func:`table_3` (the paper's Table 3 row for a tagger, plus
+  ``acc_task``), :func:`scores_on_sets`, :func:`training_curves`, :func:`describe_tagger`.
+- :mod:`~drywall_lab.course.study` (02, 03): the project's full NLU study (``results/paper``) and the benchmarks'
+  records, in tables and in sentences computed from them.
+- :mod:`~drywall_lab.course.annotation` (01): :func:`tag_share_table` (Table 2) and the tagging exercise,
+  :func:`check_tagging`.
+- :mod:`~drywall_lab.course.bilstm_crf` (02): :func:`crf_transitions` and :func:`check_most_forbidden`.
+- :mod:`~drywall_lab.course.bert` (03): the sub-word vote's exercise, :func:`check_vote`, and
+  :func:`token_predictions`, :func:`vote_statistics`.
+- :mod:`~drywall_lab.course.information_mapping` (04): rule S3's exercise, :func:`check_relative_stud`; the
+  paper's layouts step by step (:func:`map_layout`, :func:`show_layout`); every refusal reason with an example
+  (:func:`refusal_examples`).
+
+The exercises are in the way of a manipulation course: a skeleton the student completes, a check that says what
+is right or wrong. Notebooks 05 and 06's checks are ``drywall_lab.rc.exercises``, notebook 07's
+``drywall_lab.field.check_own_instructions``.
+"""
+from __future__ import annotations
+
+from drywall_lab.course.annotation import (ANCHOR_TAGS, GUIDELINES, PLACEMENT_TAGS, PRACTICE_DIR, TAGGING_EXERCISE,
+                                           check_tagging, guideline_headings, guideline_sections, parse_tagged,
+                                           practice_instruction, tag_share_table)
+from drywall_lab.course.bert import check_vote, token_predictions, vote_cases, vote_statistics
+from drywall_lab.course.bilstm_crf import check_most_forbidden, crf_transitions, reference_most_forbidden
+from drywall_lab.course.common import (BENCHMARK_RESULTS, FAST_OFF, FAST_ON, REPO_ROOT, SHARE_COLUMNS, STUDY_DIR,
+                                       ExerciseCheck, call_student, fast_mode, percent_table)
+from drywall_lab.course.information_mapping import (COUNT_WORDS, GoldLayoutRun, check_relative_stud, map_layout,
+                                                    refusal_examples, relative_stud_cases, rule_s3, show_layout,
+                                                    unclear_example, words_and_tags)
+from drywall_lab.course.study import (PAPER_TAGGER_NAMES, TAGGER_NAMES, accuracy_by_training_size, coref_comparison,
+                                      coref_finding, data_efficiency_finding, field_results,
+                                      minilm_learning_rate_choice, novel_comparison, novel_finding,
+                                      plot_accuracy_by_training_size, read_study_table, study_provenance,
+                                      study_settings)
+from drywall_lab.course.taggers import describe_tagger, scores_on_sets, table_3, table_3_row, training_curves
+
+__all__ = [
+    # common
+    "BENCHMARK_RESULTS", "FAST_OFF", "FAST_ON", "REPO_ROOT", "SHARE_COLUMNS", "STUDY_DIR", "ExerciseCheck",
+    "call_student", "fast_mode", "percent_table",
+    # taggers
+    "describe_tagger", "scores_on_sets", "table_3", "table_3_row", "training_curves",
+    # study
+    "PAPER_TAGGER_NAMES", "TAGGER_NAMES", "accuracy_by_training_size", "coref_comparison", "coref_finding",
+    "data_efficiency_finding", "field_results", "minilm_learning_rate_choice", "novel_comparison", "novel_finding",
+    "plot_accuracy_by_training_size", "read_study_table", "study_provenance", "study_settings",
+    # notebook 01
+    "ANCHOR_TAGS", "GUIDELINES", "PLACEMENT_TAGS", "PRACTICE_DIR", "TAGGING_EXERCISE", "check_tagging",
+    "guideline_headings", "guideline_sections", "parse_tagged", "practice_instruction", "tag_share_table",
+    # notebook 02
+    "check_most_forbidden", "crf_transitions", "reference_most_forbidden",
+    # notebook 03
+    "check_vote", "token_predictions", "vote_cases", "vote_statistics",
+    # notebook 04
+    "COUNT_WORDS", "GoldLayoutRun", "check_relative_stud", "map_layout", "refusal_examples", "relative_stud_cases",
+    "rule_s3", "show_layout", "unclear_example", "words_and_tags",
+]

@@ -433,15 +433,21 @@ def check_own_instructions(instructions: Sequence[str], expected: Mapping[str, s
     (a command other than ``expected``: ``{"drywall_id", "stud_id", "placement"}``), and at least two are
     carried out as intended (a question is safe, but a pipeline that only asks is no help). Each message
     says what the pipeline did with one instruction. Returns a ``drywall_lab.exercise.ExerciseCheck``.
+
+    The notebook's stub, ``[...]`` (or ``...``, ``None``), is "not attempted yet" (``ExerciseCheck.not_attempted``);
+    a ``...`` left among instructions is a placeholder, not an instruction, and is left out.
     """
     from drywall_lab.corpus.io import tokenize
     from drywall_lab.nlu.normalise import normalise
-    from drywall_lab.exercise import ExerciseCheck
+    from drywall_lab.exercise import ExerciseCheck, is_unattempted
     from drywall_lab.decision import decide_episode
     from drywall_lab.nlu import default_tagger
 
+    if is_unattempted(instructions, none=True):
+        return ExerciseCheck.not_attempted(f"MY_INSTRUCTIONS: at least {minimum} different instructions of your own "
+                                           "for the command", "drywall_lab/course/solutions/ch07.py")
     tagger = tagger or default_tagger()
-    texts = [str(t) for t in instructions]
+    texts = [str(t) for t in instructions if t is not Ellipsis]
     messages: list[str] = []
     distinct = {" ".join(w.lower() for w in tokenize(t)) for t in texts} - {""}
     if len(distinct) < minimum:

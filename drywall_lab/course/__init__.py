@@ -19,7 +19,11 @@ so ``from drywall_lab.course import X`` and ``course.X`` work whichever module `
 
 The exercises are in the way of a manipulation course: a skeleton the student completes, a check that says what
 is right or wrong. Notebooks 05 and 06's checks are ``drywall_lab.rc.exercises``, notebook 07's
-``drywall_lab.field.check_own_instructions``.
+``drywall_lab.field.check_own_instructions``. A notebook's exercise cell holds only the stub (``...``, a function
+that raises ``NotImplementedError``); every check then says "NOT ATTEMPTED YET: fill in ..." and the notebook runs
+through (``assert check.passed or not check.attempted``). The reference solutions, and the answer keys of the
+chapters' end-of-chapter questions, are kept apart in :mod:`drywall_lab.course.solutions` (``ch01`` ... ``ch07``,
+:func:`solution_file`): try the exercise first. ``drywall_lab.course`` does not import them.
 """
 from __future__ import annotations
 
@@ -29,7 +33,8 @@ from drywall_lab.course.annotation import (ANCHOR_TAGS, GUIDELINES, PLACEMENT_TA
 from drywall_lab.course.bert import check_vote, token_predictions, vote_cases, vote_statistics
 from drywall_lab.course.bilstm_crf import check_most_forbidden, crf_transitions, reference_most_forbidden
 from drywall_lab.course.common import (BENCHMARK_RESULTS, FAST_OFF, FAST_ON, REPO_ROOT, SHARE_COLUMNS, STUDY_DIR,
-                                       ExerciseCheck, call_student, fast_mode, percent_table)
+                                       ExerciseCheck, call_student, fast_mode, is_unattempted, percent_table,
+                                       solution_file)
 from drywall_lab.course.information_mapping import (COUNT_WORDS, GoldLayoutRun, check_relative_stud, map_layout,
                                                     refusal_examples, relative_stud_cases, rule_s3, show_layout,
                                                     unclear_example, words_and_tags)
@@ -43,7 +48,7 @@ from drywall_lab.course.taggers import describe_tagger, scores_on_sets, table_3,
 __all__ = [
     # common
     "BENCHMARK_RESULTS", "FAST_OFF", "FAST_ON", "REPO_ROOT", "SHARE_COLUMNS", "STUDY_DIR", "ExerciseCheck",
-    "call_student", "fast_mode", "percent_table",
+    "call_student", "fast_mode", "is_unattempted", "percent_table", "solution_file",
     # taggers
     "describe_tagger", "scores_on_sets", "table_3", "table_3_row", "training_curves",
     # study

@@ -8,8 +8,8 @@ from typing import Sequence
 import pandas as pd
 
 from drywall_lab.corpus.tags import TAGS
-from drywall_lab.course.common import REPO_ROOT
-from drywall_lab.exercise import ExerciseCheck
+from drywall_lab.course.common import REPO_ROOT, solution_file
+from drywall_lab.exercise import ExerciseCheck, is_unattempted
 
 #: The annotation guidelines and their practice set (notebook 01).
 GUIDELINES = REPO_ROOT / "annotation_guidelines" / "README.md"
@@ -108,8 +108,12 @@ def check_tagging(answer: str | Sequence[str], instruction_id: str = TAGGING_EXE
 
     ``answer`` is the instruction in the guidelines' notation (``word/TAG``, a bare word is ``O``) or one tag
     per word. Every wrong word is named with the tag the key gives and the guideline sections to read.
+    The notebook's stub, ``...`` (or ``None``), is "not attempted yet" (``ExerciseCheck.not_attempted``).
     """
     key = practice_instruction(instruction_id)
+    if is_unattempted(answer, none=True):
+        return ExerciseCheck.not_attempted(f"my_answer: the instruction {instruction_id} with /TAG after every word "
+                                           "that carries information (a bare word is O)", solution_file(1))
     words, gold = key["words"], key["tags"]
     if isinstance(answer, str):
         try:

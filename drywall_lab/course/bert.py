@@ -7,7 +7,8 @@ import numpy as np
 import pandas as pd
 
 from drywall_lab.corpus.tags import TAGS
-from drywall_lab.exercise import ExerciseCheck, call_student
+from drywall_lab.course.common import solution_file
+from drywall_lab.exercise import ExerciseCheck, call_student, is_unattempted
 
 if TYPE_CHECKING:
     from drywall_lab.nlu.base import Tagger
@@ -57,10 +58,15 @@ def check_vote(vote: Callable[[list[str], list[int | None], int], Sequence[str]]
     """Notebook 03's exercise: ``vote(token_tags, word_ids, n_words)`` against ``drywall_lab.nlu.vote_word_tags``
     (the paper's "more than half of the tokens" rule, the first token without a strict majority) on hand-made
     cases (ties, three-way splits, words without tokens, special tokens) and random ones; the first
-    disagreement is explained word by word."""
+    disagreement is explained word by word. The notebook's stub (a function that raises ``NotImplementedError``,
+    or whose body is still ``...``) is "not attempted yet"."""
     from drywall_lab.nlu.bert import vote_word_tags
 
     cases = vote_cases()
+    _, first_tags, first_ids, first_n = cases[0]
+    if is_unattempted(vote, list(first_tags), list(first_ids), first_n, none=True):
+        return ExerciseCheck.not_attempted("my_vote(token_tags, word_ids, n_words): one tag per word, voted from "
+                                           "its tokens' tags", solution_file(3))
     for what, tags, word_ids, n_words in cases:
         want = vote_word_tags(tags, word_ids, n_words)
         got, error = call_student(vote, list(tags), list(word_ids), n_words)

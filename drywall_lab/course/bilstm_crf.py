@@ -7,7 +7,8 @@ import numpy as np
 import pandas as pd
 
 from drywall_lab.corpus.tags import TAGS
-from drywall_lab.exercise import ExerciseCheck, call_student
+from drywall_lab.course.common import solution_file
+from drywall_lab.exercise import ExerciseCheck, call_student, is_unattempted
 
 if TYPE_CHECKING:
     from drywall_lab.nlu.base import Tagger
@@ -60,9 +61,15 @@ def check_most_forbidden(most_forbidden: Callable[[pd.DataFrame, int], Sequence[
                          tagger: "Tagger | None" = None) -> ExerciseCheck:
     """Notebook 02's exercise: ``most_forbidden(transitions, k)`` must return the ``k`` (before, after) tag
     pairs with the lowest scores, lowest first, on the trained tagger's table and on tables built to catch
-    swapped rows and columns, the highest scores instead of the lowest, and the wrong order."""
+    swapped rows and columns, the highest scores instead of the lowest, and the wrong order. The notebook's stub
+    (a function that raises ``NotImplementedError``, or whose body is still ``...``) is "not attempted yet"."""
+    cases = _exercise_matrices(tagger)
+    _, first_table, first_k = cases[0]
+    if is_unattempted(most_forbidden, first_table.copy(), first_k, none=True):
+        return ExerciseCheck.not_attempted("most_forbidden(transitions, k): return the k (tag before, tag after) "
+                                           "pairs with the lowest scores, lowest first", solution_file(2))
     messages = []
-    for name, table, k in _exercise_matrices(tagger):
+    for name, table, k in cases:
         want = reference_most_forbidden(table, k)
         got, error = call_student(most_forbidden, table.copy(), k)
         if error:

@@ -11,11 +11,11 @@ from typing import Sequence
 
 import pandas as pd
 
-from drywall_lab.exercise import ExerciseCheck, call_student
+from drywall_lab.exercise import ExerciseCheck, call_student, is_unattempted
 from drywall_lab.fast import FAST_OFF, FAST_ON, fast_mode
 
 __all__ = ["BENCHMARK_RESULTS", "ExerciseCheck", "FAST_OFF", "FAST_ON", "REPO_ROOT", "SHARE_COLUMNS", "STUDY_DIR",
-           "call_student", "fast_mode", "percent_table"]
+           "call_student", "fast_mode", "is_unattempted", "percent_table", "solution_file"]
 
 #: The repository root: the study's results, the benchmarks and the annotation guidelines live there.
 REPO_ROOT = Path(__file__).resolve().parent.parent.parent
@@ -23,6 +23,14 @@ REPO_ROOT = Path(__file__).resolve().parent.parent.parent
 STUDY_DIR = REPO_ROOT / "results" / "paper"
 #: The benchmarks' recorded results.
 BENCHMARK_RESULTS = REPO_ROOT / "benchmarks" / "results"
+
+
+
+def solution_file(chapter: int) -> str:
+    """Where notebook ``chapter``'s reference solution and answer keys are, as the checks name it:
+    ``drywall_lab/course/solutions/ch01.py`` for notebook 01."""
+    return f"drywall_lab/course/solutions/ch{chapter:02d}.py"
+
 
 #: The share columns of a Table 3 row, shown as percentages.
 SHARE_COLUMNS = ("Acc_word", "Acc_inst", "acc_task")

@@ -8,7 +8,8 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from drywall_lab.exercise import ExerciseCheck, call_student
+from drywall_lab.course.common import solution_file
+from drywall_lab.exercise import ExerciseCheck, call_student, is_unattempted
 
 if TYPE_CHECKING:
     import matplotlib.pyplot as plt
@@ -64,11 +65,16 @@ def check_relative_stud(relative_stud: Callable[["Site", str, str, int], str | N
     """Notebook 04's exercise: ``relative_stud(site, anchor_id, direction, count)`` (rule S3 of Fig. 12: the stud
     ``count`` places to the ``direction`` of the anchor, ``None`` past the wall's end) against the library's
     rules on every anchor, both directions and counts from 0 to past the end; the first disagreement and
-    how many there are."""
+    how many there are. The notebook's stub (a function that raises ``NotImplementedError``) is "not attempted
+    yet"; ``None`` is a real answer here (past the wall's end), so a function returning it is attempted."""
     from drywall_lab.site import default_site
 
     site = site or default_site()
     cases = relative_stud_cases(site)
+    if is_unattempted(relative_stud, site, *cases[0][:3]):
+        return ExerciseCheck.not_attempted("relative_stud(site, anchor_id, direction, count): the id of the stud "
+                                           "count places to the direction of the anchor, None past either end",
+                                           solution_file(4))
     disagreements = []
     for anchor, direction, count, markup in cases:
         want, why = rule_s3(markup, site)

@@ -9,6 +9,9 @@ and if not, why not.
 - ``check_layout`` (notebook 06): a wall of the student's own, ``EXERCISE_WALL``, said as a worker would.
   The student writes the instructions; the check tags and interprets them, says which panel each one
   puts where (or why it was refused), and once they build the wall, lets the simulated robot build it.
+
+Both say "NOT ATTEMPTED YET: fill in ..." (``ExerciseCheck.not_attempted``) for the notebook's stub, left as it
+is; the reference solutions are in ``drywall_lab/course/solutions/ch05.py`` and ``ch06.py``.
 """
 from __future__ import annotations
 
@@ -19,7 +22,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from drywall_lab.nlu.normalise import normalise
-from drywall_lab.exercise import ExerciseCheck
+from drywall_lab.exercise import ExerciseCheck, is_unattempted
 from drywall_lab.im import ActionHistory, RobotCommand
 from drywall_lab.pipeline import WordTagger
 from drywall_lab.rc.cell import RobotCell
@@ -41,6 +44,9 @@ class SimulationCheck(ExerciseCheck):
 # --- notebook 05: servo gains -------------------------------------------------------------------------------
 #: The exercise asks for servos at most this stiff (a fraction of ``SERVOS``' kp).
 SOFTEST_ASKED = 0.2
+#: Where the exercises' reference solutions are (``drywall_lab.course.solutions``; not imported here: the library
+#: imports nothing of the course).
+SOLUTIONS = {5: "drywall_lab/course/solutions/ch05.py", 6: "drywall_lab/course/solutions/ch06.py"}
 
 
 def reference_softer(gains: ServoGains, kp_scale: float) -> ServoGains:
@@ -103,7 +109,24 @@ def check_servo_gains(softer: Callable[[ServoGains, float], ServoGains], kp_scal
     (a number in (0, ``SOFTEST_ASKED``]), then runs ``command`` (layout 1's first: 500320 on 500100) with
     every servo made softer by ``kp_scale`` and says whether the placement is within tolerance, and if
     not, why not.
+
+    The notebook's stub is "not attempted yet": ``softer`` that raises ``NotImplementedError`` (or whose body is
+    still ``...``), ``kp_scale`` left as ``...`` (or ``None``). A ``softer`` already written is checked even
+    while the scale is not chosen yet; nothing is simulated until both are there.
     """
+    softer_stub = is_unattempted(softer, SERVOS[JOINTS[0]], 0.25, none=True)
+    scale_stub = is_unattempted(kp_scale, none=True)
+    if softer_stub or scale_stub:
+        scale_asked = f"KP_SCALE, a kp scale above 0 and at most {SOFTEST_ASKED:g}"
+        if softer_stub:
+            what = "softer(gains, kp_scale): kp scaled, kv so that the damping ratio is kept, the force limit as it is"
+            return SimulationCheck.not_attempted(what + (f"; and {scale_asked}" if scale_stub else ""), SOLUTIONS[5])
+        problems = _gain_problems(softer)
+        if problems:
+            return SimulationCheck(False, problems + [f"then fill in {scale_asked}"])
+        check = SimulationCheck.not_attempted(scale_asked, SOLUTIONS[5])
+        check.messages.insert(1, "softer() is right: it keeps every servo's damping ratio and force limit")
+        return check
     if isinstance(kp_scale, bool) or not isinstance(kp_scale, (int, float)) or not math.isfinite(kp_scale):
         return SimulationCheck(False, [f"the scale must be a number, not {kp_scale!r}"])
     if not 0 < kp_scale <= SOFTEST_ASKED:
@@ -161,11 +184,17 @@ def check_layout(instructions: Sequence[str], tagger: WordTagger, target: SiteSt
     Each instruction is tagged and interpreted in order, as ``run`` would; every command is compared with
     the target wall (a panel of the same size in the same place counts, whichever of equal sheets it is).
     Only when the commands build exactly the target does the simulated robot carry the episode out; the
-    check passes when it places every panel within tolerance.
+    check passes when it places every panel within tolerance. The notebook's stub, ``[...]`` (or ``...``,
+    ``None``), is "not attempted yet"; nothing is tagged or simulated then.
     """
+    if is_unattempted(instructions, none=True):
+        return SimulationCheck.not_attempted("my_instructions: one instruction per panel of the wall, in an order "
+                                             "the stacks allow", SOLUTIONS[6])
     target = target if target is not None else exercise_wall()
     if isinstance(instructions, str) or not all(isinstance(i, str) and i.strip() for i in instructions):
-        return SimulationCheck(False, ["give a list of instructions, each a non-empty string"])
+        placeholder = not isinstance(instructions, str) and any(i is Ellipsis for i in instructions)
+        return SimulationCheck(False, ["give a list of instructions, each a non-empty string"]
+                               + (["replace every ... with an instruction of your own"] if placeholder else []))
     instructions = list(instructions)
     wanted = {_piece(target, i): i for i in target.installed}
     history = ActionHistory(target.site)

@@ -346,7 +346,7 @@ def two_meanings(outcome: Outcome, words: Sequence[str], tags: Sequence[str],
 def placement_contradicted(words: Sequence[str], tags: Sequence[str]) -> bool:
     """Whether a reading's placement goes against a word that says how the panel goes: a row although a word says it
     stands ("keep the top clear , the 4x6 stands on 500102" with "top" read as the top row)."""
-    return bool({"Hr_top", "Hr_btm"}.intersection(tags)) and bool(W.upright_words(words, tags))
+    return bool({"Hr_top", "Hr_btm"}.intersection(tags)) and bool(W.upright_words(words))
 
 
 # --- step 1: the candidates and their features ---------------------------------------------------------------

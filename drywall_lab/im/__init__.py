@@ -38,10 +38,9 @@ centre line"), "another of those" and "ditto" point back, so does a pointing wor
 position ("two right of that/St_loc2 one", "of where/St_loc2 you put it", "the pile that/Dw_loc2 one
 came/Dw_loc2 from"), short written forms (``frm``, ``b4``, ``lft``, ``ctr``) are spelt out, a word that only
 points back ("another", "one of those", "again") is no size when other words name the panel ("another 2x8" is
-the 2x8; "same size as the last one" always is one), "again" is never a stack to count away from, a row word
-naming a place in a stack ("off the top of the middle pile", "the top sheet", "the top 2x8") is no row (read
-as ``O``, trace step ``R0 place in a stack``), and a "right" that says when ("right now") is no side (trace
-step ``R0 time word``).
+the 2x8; "same size as the last one" always is one), and a row word naming a place in a stack ("off the top
+of the middle pile", "the top sheet", "the top 2x8") is no row (read as ``O``, trace step ``R0 place in a
+stack``).
 
 **Only the final intention counts** (``drywall_lab/im/correction.py``, guidelines 4.7): when a tagger has
 tagged the abandoned words of a change of mind too ("the second/St_loc1 stud from/St_loc1 the/St_loc1

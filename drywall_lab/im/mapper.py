@@ -78,9 +78,6 @@ def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory 
         trace.add("reading", "R0 place in a stack", True,
                   conclusion=f"{W.quote([ti.words[i] for i in ti.in_stack])} names a place in a stack, not a row "
                              "on the wall: read as O")
-    if ti.said_when:
-        trace.add("reading", "R0 time word", True,
-                  conclusion=f"{W.quote([ti.words[i] for i in ti.said_when])} says when, not which side: read as O")
     if ti.taken_back:
         trace.add("reading", "R0 final intention", True, conclusion=_taken_back_text(ti))
     ctx = MappingContext(site, history.state, history.last)

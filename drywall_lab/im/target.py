@@ -190,7 +190,7 @@ def target_by_relative_position(ti: TaggedInstruction, ctx: MappingContext) -> D
     if ids:
         anchor = ctx.site.panel(ids[0])
         anchor_text = f"panel {anchor.drywall_id}"
-    elif W.points_back(anchor_words) and (count == 0 or not W.only_repeats(anchor_words)):  # not "right ... again"
+    elif W.points_back(anchor_words):
         last = ctx.require_last(W.quote(anchor_words))
         anchor = ctx.site.panel(last["drywall_id"])
         anchor_text = f"the previous panel {anchor.drywall_id}"

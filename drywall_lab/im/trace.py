@@ -27,8 +27,7 @@ class TaggedInstruction:
     the fourth from the right") are read as ``O``: only the final intention counts (guidelines 4.7).
     ``taken_back`` keeps which words those were, and what took each back. The placement tags of a
     place in a stack ("the 2x8 off the top of the middle pile", ``words.stack_place``; kept in
-    ``in_stack``) are read as ``O`` too: it says which panel, or why, never the row; so is a "right" that says
-    when ("right now", ``words.time_words``; kept in ``said_when``), never a side.
+    ``in_stack``) are read as ``O`` too: it says which panel, or why, never the row.
     """
 
     words: tuple[str, ...]
@@ -37,8 +36,6 @@ class TaggedInstruction:
     taken_back: dict[int, str] = field(init=False, repr=False, compare=False)
     #: The positions of a place in a stack ("off the top of the middle pile") whose placement tags were read as ``O``.
     in_stack: tuple[int, ...] = field(init=False, repr=False, compare=False)
-    #: The positions of a "right" that says when ("right now", ``words.time_words``), whose tags were read as ``O``.
-    said_when: tuple[int, ...] = field(init=False, repr=False, compare=False)
     #: Where each tag stands (tag -> word positions): the rules ask for it thousands of times per decision.
     _positions: dict[str, list[int]] = field(init=False, repr=False, compare=False)
 
@@ -50,15 +47,13 @@ class TaggedInstruction:
         if unknown:
             raise ValueError(f"unknown tag(s) {', '.join(unknown)}; the tags are {', '.join(COREF_TAGS)}")
         in_stack = tuple(i for i in W.stack_place(words) if tags[i] in PLACEMENT_TAGS)
-        said_when = tuple(i for i in W.time_words(words) if tags[i] != "O")
-        if in_stack or said_when:
-            tags = tuple("O" if i in in_stack or i in said_when else t for i, t in enumerate(tags))
+        if in_stack:
+            tags = tuple("O" if i in in_stack else t for i, t in enumerate(tags))
         back = taken_back(words, tags)
         if back:
             tags = tuple("O" if i in back else t for i, t in enumerate(tags))
         object.__setattr__(self, "taken_back", back)
         object.__setattr__(self, "in_stack", in_stack)
-        object.__setattr__(self, "said_when", said_when)
         object.__setattr__(self, "words", words)
         object.__setattr__(self, "tags", tags)
         positions: dict[str, list[int]] = {}

@@ -51,11 +51,6 @@ LYING_WORDS = frozenset({"horizontal", "horizontally", "sideways", "landscape", 
 #: Words that say a panel stands ("upright", "stood up on its end"), also ``O``: the default placement.
 UPRIGHT_WORDS = frozenset({"upright", "vertical", "vertically", "standing", "stood", "stand", "stands", "plumb",
                            "portrait"})
-#: Words that take back or deny what was said ("not lying down", "lying down, no wait, upright", "let me say that
-#: again"): a placement word near them may be the abandoned one (guidelines 4.7, corrections).
-TAKE_BACK_WORDS = frozenset({"not", "no", "don't", "dont", "never", "wait", "sorry", "actually", "scratch", "meant",
-                             "mean", "correction", "disregard", "ignore", "strike", "rather", "instead", "oops", "bad",
-                             "hang", "hold", "wrong", "said", "say"})
 #: Row words that say the top and the bottom row (``Hr_top``, ``Hr_btm``): every row phrase of the guidelines has one
 #: ("up top", "across the top", "the upper course", "at the ceiling"; "down low", "floor level"); a row noun after
 #: them ("row", "course", "half") carries the tag too but says neither row on its own.
@@ -227,46 +222,17 @@ def says_middle(words: Iterable[str]) -> bool:
     return any(normalise(w) in MIDDLE_WORDS for w in words)
 
 
-#: An upright word says how *this* panel goes only near the instruction's own words: at most this many words from a
-#: tagged word ("the 4x6 stands on 500102"), not in a story before it.
-LYING_REACH = 4
+def upright_words(words: Sequence[str]) -> list[int]:
+    """Where the words say the panel stands ("standing up", "upright", ``UPRIGHT_WORDS``): none when a word says it
+    lies (``LYING_WORDS``).
 
-
-def _near_tagged(positions: list[int], tags: Sequence[str] | None) -> list[int]:
-    """The positions within ``LYING_REACH`` words of a tagged word (all of them without ``tags``)."""
-    if tags is None or not positions:
-        return positions
-    tagged = [j for j, t in enumerate(tags) if t not in UNTAGGED]
-    return [i for i in positions if any(abs(i - j) <= LYING_REACH for j in tagged)]
-
-
-def upright_words(words: Sequence[str], tags: Sequence[str] | None = None) -> list[int]:
-    """Where the words say the panel stands ("standing up", "upright", ``UPRIGHT_WORDS``): none when a word takes
-    something back or denies it ("not upright", "no wait"; the upright word may be the abandoned one) or says it lies
-    (``LYING_WORDS``); with ``tags``, only those within ``LYING_REACH`` words of a tagged word: one further away is a
-    story or a reason ("on the last job we did every wall upright anyway the 2x8 from the left ...").
-
-    >>> upright_words("the 4x6 stands on 500102".split()), upright_words("lying down , not upright".split())
+    >>> upright_words("the 4x6 stands on 500102".split()), upright_words("lying down , then upright".split())
     ([2], [])
     """
     said = [normalise(w) for w in words]
-    if any(w in TAKE_BACK_WORDS or w in LYING_WORDS for w in said):
+    if any(w in LYING_WORDS for w in said):
         return []
-    return _near_tagged([i for i, w in enumerate(said) if w in UPRIGHT_WORDS], tags)
-
-
-#: Words after "right" that make it a time, not a side ("right now", "right away"; guidelines: time words are ``O``).
-TIME_AFTER_RIGHT = frozenset({"now", "away"})
-
-
-def time_words(words: Sequence[str]) -> list[int]:
-    """The positions of a "right" that says when ("... from the stud you used last, right now"), never a side.
-
-    >>> time_words("third to the right , right now".split()), time_words("right of 500104".split())
-    ([5], [])
-    """
-    norm = [normalise(w) for w in words]
-    return [i for i in range(len(norm) - 1) if norm[i] == "right" and norm[i + 1] in TIME_AFTER_RIGHT]
+    return [i for i, w in enumerate(said) if w in UPRIGHT_WORDS]
 
 
 #: The nouns of a stack (field corpus ``STACK_NOUNS``, "stack", "pile", ...): "the top of the left stack" is a place in it.
@@ -364,17 +330,6 @@ def points_back(anchor_words: Iterable[str]) -> bool:
     """Whether an anchor's words point back at the last accepted command: a back-reference word ("previous", "the
     one you just used") or, in an anchor only, a pointing word ("that one", "where you put it", ``ANCHOR_POINTING_WORDS``)."""
     return any(_points_back(normalise(w)) for w in anchor_words)
-
-
-#: Back-reference words that say "one more of the same", never a piece to count *away* from: "the same stud again" is
-#: the last stud, but "right of ... again" has no anchor ("left pile , top row again" with "again" tagged ``Dw_loc2``).
-REPEAT_WORDS = frozenset({"again", "another", "ditto"})
-
-
-def only_repeats(anchor_words: Iterable[str]) -> bool:
-    """Whether an anchor's words that point back are all ``REPEAT_WORDS`` ("again"): they anchor "the same" only."""
-    pointing = [normalise(w) for w in anchor_words if _points_back(normalise(w))]
-    return bool(pointing) and all(w in REPEAT_WORDS for w in pointing)
 
 
 def _points_back(normalised: str) -> bool:

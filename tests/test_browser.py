@@ -229,8 +229,11 @@ def exported_notebook(tmp_path_factory) -> tuple[Path, int]:
     notebook = nbformat.read(ROOT / "notebooks" / "06_end_to_end.ipynb", as_version=4)
     figures = sum("image/png" in o.get("data", {}) for c in notebook.cells if c.cell_type == "code"
                   for o in c.outputs)
+    figures += sum(c.source.count("](animations/") for c in notebook.cells if c.cell_type == "markdown")  # the GIF
     body, _ = HTMLExporter().from_notebook_node(notebook)
-    page = tmp_path_factory.mktemp("notebook") / "06_end_to_end.html"
+    folder = tmp_path_factory.mktemp("notebook")
+    (folder / "animations").symlink_to(ROOT / "notebooks" / "animations", target_is_directory=True)
+    page = folder / "06_end_to_end.html"
     page.write_text(body, encoding="utf-8")
     return page, figures
 

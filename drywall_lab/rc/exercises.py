@@ -9,8 +9,12 @@ and if not, why not.
 - ``check_layout`` (notebook 06): a wall of the student's own, ``EXERCISE_WALL``, said as a worker would.
   The student writes the instructions; the check tags and interprets them, says which panel each one
   puts where (or why it was refused), and once they build the wall, lets the simulated robot build it.
+- ``check_ik_step`` (notebook 05, from scratch): one damped least-squares step of differential inverse
+  kinematics, compared with the closed form and tried on the robot's own Jacobian (``mujoco.mj_jacSite``).
+- ``check_panel_rect`` (notebook 06, from scratch): where a panel covers the wall from its stud and placement
+  (the paper's Fig. 6), compared with ``Site.rect`` on every panel, stud and placement.
 
-Both say "NOT ATTEMPTED YET: fill in ..." (``ExerciseCheck.not_attempted``) for the notebook's stub, left as it
+All say "NOT ATTEMPTED YET: fill in ..." (``ExerciseCheck.not_attempted``) for the notebook's stub, left as it
 is; the reference solutions are in ``drywall_lab/course/solutions/ch05.py`` and ``ch06.py``.
 """
 from __future__ import annotations
@@ -22,7 +26,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from drywall_lab.nlu.normalise import normalise
-from drywall_lab.exercise import ExerciseCheck, is_unattempted
+from drywall_lab.exercise import ExerciseCheck, call_student, is_unattempted
 from drywall_lab.im import ActionHistory, RobotCommand
 from drywall_lab.pipeline import WordTagger
 from drywall_lab.rc.cell import RobotCell
@@ -234,3 +238,269 @@ def check_layout(instructions: Sequence[str], tagger: WordTagger, target: SiteSt
         messages.append(f"the simulated robot built the wall: {len(run.placements)} panels, every one within "
                         f"tolerance (largest error {worst:.2f} mm of {POSITION_TOLERANCE * 1000:g} mm), nothing hit")
     return SimulationCheck(not failed, messages, run=run)
+
+
+# --- notebook 05, from scratch: one step of differential inverse kinematics ------------------------------------
+#: The worked example's target: this far (m) from where the TCP is in the robot's resting posture (``ArmIK.home``).
+IK_EXAMPLE_OFFSET = (0.10, -0.05, 0.08)
+
+
+@dataclass
+class IKExample:
+    """One differential-IK step's ingredients on the project's robot (``robot_mjcf``, alone: rail and arm).
+
+    ``jacobian`` is the TCP's position Jacobian (3 x 7, ``mujoco.mj_jacSite``) at joint values ``q``,
+    ``error`` the target's position minus the TCP's (m).
+    """
+
+    model: "mujoco.MjModel"
+    q: np.ndarray
+    target: np.ndarray
+    tcp: np.ndarray
+    jacobian: np.ndarray
+    error: np.ndarray
+
+
+def tcp_position_and_jacobian(model: "mujoco.MjModel", q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The TCP site's world position and its 3 x nv position Jacobian at joint values ``q``: column j is how
+    fast the TCP moves when joint j moves (m per m on the rail, m per rad on the arm)."""
+    import mujoco
+
+    from drywall_lab.rc.robot import TCP_SITE
+
+    data = mujoco.MjData(model)
+    data.qpos[:] = q
+    mujoco.mj_forward(model, data)
+    site = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, TCP_SITE)
+    jacp = np.zeros((3, model.nv))
+    mujoco.mj_jacSite(model, data, jacp, None, site)
+    return data.site_xpos[site].copy(), jacp
+
+
+def ik_example(offset: Sequence[float] = IK_EXAMPLE_OFFSET) -> IKExample:
+    """The notebook's worked example: the robot at rest (``ArmIK.home``), a target ``offset`` from its TCP."""
+    import mujoco
+
+    from drywall_lab.rc.robot import ArmIK, robot_mjcf
+
+    model = mujoco.MjModel.from_xml_string(robot_mjcf())
+    q = ArmIK().home.copy()
+    tcp, jacobian = tcp_position_and_jacobian(model, q)
+    target = tcp + np.asarray(offset, dtype=float)
+    return IKExample(model, q, target, tcp, jacobian, target - tcp)
+
+
+def reference_ik_step(jacobian: np.ndarray, error: np.ndarray, damping: float) -> np.ndarray:
+    """Damped least squares: dq = J^T (J J^T + damping^2 I)^-1 e, the dq that minimises
+    |J dq - e|^2 + damping^2 |dq|^2 (finite even where J J^T is singular)."""
+    J, e = np.asarray(jacobian, dtype=float), np.asarray(error, dtype=float)
+    return J.T @ np.linalg.solve(J @ J.T + damping**2 * np.eye(J.shape[0]), e)
+
+
+def ik_iterations(example: IKExample, step: Callable[[np.ndarray, np.ndarray, float], np.ndarray],
+                  damping: float = 0.05, step_size: float = 0.5, iterations: int = 8):
+    """``step`` repeated from the example's posture: each time the Jacobian and the error are taken anew and
+    ``step_size`` times the step is applied with ``mujoco.mj_integratePos``. A pandas DataFrame: iteration,
+    the TCP's distance from the target (mm) and the size of the step (rad, the rail's m counted alike)."""
+    import mujoco
+    import pandas as pd
+
+    q = example.q.copy()
+    rows = []
+    for k in range(iterations + 1):
+        tcp, J = tcp_position_and_jacobian(example.model, q)
+        e = example.target - tcp
+        dq = np.asarray(step(J, e, damping), dtype=float)
+        rows.append({"iteration": k, "distance to target (mm)": round(float(np.linalg.norm(e)) * 1000, 3),
+                     "|dq|": round(float(np.linalg.norm(dq)), 5)})
+        mujoco.mj_integratePos(example.model, q, dq, step_size)
+    return pd.DataFrame(rows)
+
+
+def _ik_slips(J: np.ndarray, e: np.ndarray, damping: float) -> dict[str, np.ndarray | None]:
+    """What the usual slips compute, where they compute anything (None where the shapes do not fit)."""
+    slips: dict[str, np.ndarray | None] = {}
+    I = np.eye(J.shape[0])
+    with np.errstate(all="ignore"):
+        slips["sign"] = -reference_ik_step(J, e, damping)
+        slips["lambda"] = J.T @ np.linalg.solve(J @ J.T + damping * I, e)
+        try:
+            slips["undamped"] = J.T @ np.linalg.solve(J @ J.T, e)
+        except np.linalg.LinAlgError:
+            slips["undamped"] = None
+        slips["pinv"] = np.linalg.pinv(J) @ e
+        slips["transpose"] = (J @ np.linalg.solve(J @ J.T + damping**2 * I, e)) if J.shape[0] == J.shape[1] else None
+        slips["plain transpose"] = J.T @ e
+    return slips
+
+
+_IK_SLIP_MESSAGES = {
+    "sign": "your step points the wrong way (it is minus the right one): the error is the target's position minus "
+            "the TCP's, e = p_target - p(q), and the step follows it: dq = J^T (J J^T + lambda^2 I)^-1 e",
+    "lambda": "the damping enters squared: J J^T + lambda^2 I, not J J^T + lambda I (lambda is in the units of J, "
+              "lambda^2 in those of J J^T)",
+    "undamped": "your step has no damping: J^T (J J^T)^-1 e is right only where J J^T is well invertible; add "
+                "lambda^2 I to J J^T",
+    "pinv": "that is the pseudo-inverse step pinv(J) e, with no damping: add lambda^2 I to J J^T",
+    "transpose": "J where J^T belongs: dq = J^T (J J^T + lambda^2 I)^-1 e (J maps joint steps to TCP motion, J^T "
+                 "maps TCP errors back to joint steps)",
+    "plain transpose": "that is the Jacobian-transpose step J^T e: the damped least-squares step also divides by "
+                       "(J J^T + lambda^2 I)",
+}
+
+
+def _ik_cases(example: IKExample, rng: np.random.Generator) -> list[tuple[str, np.ndarray, np.ndarray, float]]:
+    """The check's cases: the worked example, random Jacobians (3 x 7, 3 x 3, 6 x 7), a singular one."""
+    cases = [("the worked example (the robot's TCP Jacobian at rest)", example.jacobian, example.error, 0.05)]
+    for shape, damping in (((3, 7), 0.5), ((3, 3), 0.3), ((6, 7), 0.2), ((3, 7), 0.05)):
+        cases.append((f"a random {shape[0]} x {shape[1]} Jacobian, damping {damping:g}", rng.normal(size=shape),
+                      rng.normal(size=shape[0]) * 0.1, damping))
+    row = rng.normal(size=7)
+    singular = np.array([row, 2 * row, rng.normal(size=7)])  # rank 2: J J^T cannot be inverted
+    cases.append(("a singular 3 x 7 Jacobian (two rows in proportion, as at a stretched-out arm), damping 0.1",
+                  singular, rng.normal(size=3) * 0.1, 0.1))
+    return cases
+
+
+def check_ik_step(ik_step: Callable[[np.ndarray, np.ndarray, float], np.ndarray]) -> ExerciseCheck:
+    """Notebook 05's from-scratch exercise: ``ik_step(jacobian, error, damping)`` -> dq, one damped
+    least-squares step of differential IK.
+
+    Compared with the closed form J^T (J J^T + damping^2 I)^-1 e on the worked example, random Jacobians
+    (wide, square, six rows) and a singular one, with a message for each usual slip (the sign of the error,
+    J for J^T, no damping, lambda for lambda^2); then applied on the real robot (``ik_iterations``): the TCP
+    must come nearer its target. The notebook's stub (raises ``NotImplementedError``) is "not attempted yet".
+    """
+    example = ik_example()
+    cases = _ik_cases(example, np.random.default_rng(5))
+    if is_unattempted(ik_step, cases[0][1], cases[0][2], cases[0][3], none=True):
+        return ExerciseCheck.not_attempted("ik_step(jacobian, error, damping): dq = J^T (J J^T + damping^2 I)^-1 e",
+                                           SOLUTIONS[5])
+    messages = []
+    for what, J, e, damping in cases:
+        got, error = call_student(ik_step, J.copy(), e.copy(), damping)
+        if error:
+            hint = (" (the undamped J J^T of a singular Jacobian cannot be inverted: add damping^2 I)"
+                    if "singular" in what.lower() or "Singular" in error else "")
+            if "broadcast" in error:
+                hint = f" (J is {J.shape[0]} x {J.shape[1]}: the identity is {J.shape[0]} x {J.shape[0]}, np.eye(J.shape[0]))"
+            elif "shape" in error or "mismatch" in error or "aligned" in error:
+                hint = (f" (J is {J.shape[0]} x {J.shape[1]}: dq has one entry per joint, {J.shape[1]}; J where J^T "
+                        f"belongs does not fit: dq = J^T (J J^T + damping^2 I)^-1 e)")
+            return ExerciseCheck(False, [f"on {what}: ik_step raised {error}{hint}"])
+        try:
+            got = np.asarray(got, dtype=float)
+        except (TypeError, ValueError):
+            return ExerciseCheck(False, [f"on {what}: ik_step must return an array of joint steps, not {type(got).__name__}"])
+        if got.shape != (J.shape[1],):
+            return ExerciseCheck(False, [f"on {what}: dq must have one entry per joint, shape ({J.shape[1]},), not "
+                                         f"{got.shape}: J is {J.shape[0]} x {J.shape[1]}, so dq = J^T (...) e"])
+        if not np.all(np.isfinite(got)):
+            return ExerciseCheck(False, [f"on {what}: your step is not finite ({got}): " + _IK_SLIP_MESSAGES["undamped"]])
+        want = reference_ik_step(J, e, damping)
+        if np.allclose(got, want, rtol=1e-6, atol=1e-9):
+            continue
+        for slip, value in _ik_slips(J, e, damping).items():
+            if value is not None and np.all(np.isfinite(value)) and np.allclose(got, value, rtol=1e-6, atol=1e-9):
+                return ExerciseCheck(False, [f"on {what}: {_IK_SLIP_MESSAGES[slip]}"])
+        return ExerciseCheck(False, [f"on {what}: expected dq = {np.round(want, 5)}, got {np.round(got, 5)} "
+                                     f"(dq = J^T (J J^T + damping^2 I)^-1 e)"])
+    messages.append(f"ik_step matches J^T (J J^T + damping^2 I)^-1 e on {len(cases)} cases, the singular one included")
+    table = ik_iterations(example, ik_step, iterations=3)
+    distances = table["distance to target (mm)"].tolist()
+    if not distances[-1] < distances[0]:
+        return ExerciseCheck(False, messages + [f"on the robot the TCP did not come nearer its target: {distances} mm"])
+    messages.append(f"on the robot, three half steps bring the TCP from {distances[0]:.1f} mm to {distances[-1]:.2f} "
+                    f"mm of its target")
+    return ExerciseCheck(True, messages)
+
+
+# --- notebook 06, from scratch: where a panel covers the wall ---------------------------------------------------
+#: The worked example: the first instruction of the paper's layout 1 (a standard sheet on stud 500100's left line).
+RECT_EXAMPLE = ("500320", "500100", "vertical_left")
+
+
+def _rect_slips(panel, stud, placement) -> dict[str, tuple[float, float, float, float]]:
+    """What the usual slips compute for one case: (x_left, x_right, z_bottom, z_top)."""
+    from drywall_lab.site import WALL_HEIGHT, Placement
+
+    placement = Placement(placement)
+    left, centre = stud.x_left_line, stud.x_center
+    x = centre if placement is Placement.VERTICAL_MIDDLE else left
+    slips = {}
+    if placement is Placement.VERTICAL_MIDDLE:
+        slips["middle on the left line"] = (left, left + panel.w, 0.0, panel.l)
+    else:
+        slips["left line at the centre"] = ((centre, centre + panel.w, 0.0, panel.l) if placement.vertical
+                                            else (centre, centre + panel.l, *(
+                                                (WALL_HEIGHT - panel.w, WALL_HEIGHT)
+                                                if placement is Placement.HORIZONTAL_TOP else (0.0, panel.w))))
+    if placement.vertical:
+        slips["sides swapped"] = (x, x + panel.l, 0.0, panel.w)
+    else:
+        top = placement is Placement.HORIZONTAL_TOP
+        slips["sides swapped"] = (x, x + panel.w, *((WALL_HEIGHT - panel.l, WALL_HEIGHT) if top else (0.0, panel.l)))
+        slips["rows swapped"] = (x, x + panel.l, *((0.0, panel.w) if top else (WALL_HEIGHT - panel.w, WALL_HEIGHT)))
+        if top:
+            slips["top row from the floor"] = (x, x + panel.l, panel.w, 2 * panel.w)
+    return slips
+
+
+_RECT_SLIP_MESSAGES = {
+    "middle on the left line": "vertical_middle (Vr_md) puts the panel's left edge on the stud's centre line "
+                               "(stud.x_center), not on its left line",
+    "left line at the centre": "every placement but vertical_middle puts the panel's left edge on the stud's left "
+                               "line (stud.x_left_line), not on its centre line",
+    "sides swapped": "a vertical panel stands on its short side (w across, l up); a horizontal one lies on its long "
+                     "side (l across, w up): the two sides are swapped",
+    "rows swapped": "horizontal_top is the top row (its top edge at the wall's height, WALL_HEIGHT), "
+                    "horizontal_bottom the bottom row (its bottom edge on the floor, z = 0): the rows are swapped",
+    "top row from the floor": "the top row hangs from the wall's top: z_top = WALL_HEIGHT, z_bottom = WALL_HEIGHT - w",
+}
+
+
+def _rect_tuple(rect) -> tuple[float, float, float, float] | None:
+    try:
+        return tuple(float(getattr(rect, k)) for k in ("x_left", "x_right", "z_bottom", "z_top"))
+    except (AttributeError, TypeError, ValueError):
+        return None
+
+
+def check_panel_rect(panel_rect: Callable, site=None) -> ExerciseCheck:
+    """Notebook 06's from-scratch exercise: ``panel_rect(panel, stud, placement)`` -> ``Rect``, where a panel put
+    on a stud covers the wall (the paper's Fig. 6: the four placements).
+
+    Compared with the site's own ``Site.rect`` on the worked example (``RECT_EXAMPLE``), then on every panel, stud
+    and placement of the site (enumeration: 9 x 13 x 4 cases), with a message for each usual slip (the centre
+    line and the left line, the panel's sides, the two rows). The notebook's stub is "not attempted yet".
+    """
+    from drywall_lab.site import Placement
+
+    site = site if site is not None else default_site()
+    d, s, p = RECT_EXAMPLE
+    example = (site.panel(d), site.stud(s), Placement(p))
+    if is_unattempted(panel_rect, *example, none=True):
+        return ExerciseCheck.not_attempted("panel_rect(panel, stud, placement): the Rect the panel covers on the "
+                                           "wall", SOLUTIONS[6])
+    cases = [example] + [(panel, stud, placement) for placement in Placement for panel in site.panels
+                         for stud in site.studs]
+    for k, (panel, stud, placement) in enumerate(cases):
+        what = (f"{'the worked example: ' if k == 0 else ''}panel {panel.drywall_id} ({panel.w_ft:g} x "
+                f"{panel.l_ft:g} ft) on stud {stud.stud_id}, {placement.value}")
+        got, error = call_student(panel_rect, panel, stud, placement)
+        if error:
+            return ExerciseCheck(False, [f"{what}: panel_rect raised {error}"])
+        got_t, want_t = _rect_tuple(got), _rect_tuple(site.rect(panel, stud, placement))
+        if got_t is None:
+            return ExerciseCheck(False, [f"{what}: panel_rect must return a Rect(x_left, x_right, z_bottom, z_top), "
+                                         f"not {type(got).__name__}"])
+        if np.allclose(got_t, want_t, atol=1e-9):
+            continue
+        for slip, value in _rect_slips(panel, stud, placement).items():
+            if np.allclose(got_t, value, atol=1e-9):
+                return ExerciseCheck(False, [f"{what}: {_RECT_SLIP_MESSAGES[slip]}"])
+        words = ("x_left", "x_right", "z_bottom", "z_top")
+        wrong = [f"{n} {g:.4f} (expected {w:.4f})" for n, g, w in zip(words, got_t, want_t) if abs(g - w) > 1e-9]
+        return ExerciseCheck(False, [f"{what}: " + ", ".join(wrong) + " m"])
+    return ExerciseCheck(True, [f"panel_rect agrees with the site's own Site.rect on the worked example and on all "
+                                f"{len(cases) - 1} cases: every panel, every stud, the four placements"])

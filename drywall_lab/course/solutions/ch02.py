@@ -1,11 +1,13 @@
 """Notebook 02 (BiLSTM-CRF), exercise "what has the CRF learned to forbid?": reference solution, and answer keys
 of the chapter's closing questions.
 
-Reference solution: try the exercise first (``check_most_forbidden(most_forbidden, shipped)`` in the notebook
-says what is wrong: swapped rows and columns, the highest scores, the wrong order).
+Reference solutions: try the exercise first (``check_most_forbidden(most_forbidden, shipped)`` in the notebook
+says what is wrong: swapped rows and columns, the highest scores, the wrong order). The from-scratch exercise,
+``viterbi`` (the CRF's best path on the toy of section 9), is checked by ``check_viterbi(viterbi)``.
 """
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 
 
@@ -46,3 +48,25 @@ sizes: the M4 rows (316 instructions) and M3 (632) of the BiLSTM-CRF against Min
 means the gap at 316 instructions; the per-epoch validation curves of Fig. 13 show the "in fewer epochs" part, and
 the novel split whether it also generalises better.""",
 }
+
+
+def viterbi(emissions: np.ndarray, transitions: np.ndarray, start: np.ndarray,
+            end: np.ndarray) -> tuple[list[int], float]:
+    """The best tag path (one tag index per word) and its score: Viterbi, the from-scratch exercise.
+
+    ``best[j]`` is the best score of a path over the words so far that ends in tag ``j``; for the next word,
+    ``best[i] + transitions[i, j]`` is the best path that goes from tag ``i`` to ``j``, so its maximum over ``i``
+    (plus the word's emission score) is the new ``best[j]``, and its argmax the back-pointer. After the last word,
+    add the end scores, take the best tag, and follow the back-pointers from the last word to the first.
+    """
+    best = start + emissions[0]
+    back_pointers = []
+    for word_scores in emissions[1:]:
+        candidates = best[:, None] + transitions  # [tag before, tag after]
+        back_pointers.append(np.argmax(candidates, axis=0))
+        best = np.max(candidates, axis=0) + word_scores
+    best = best + end
+    path = [int(np.argmax(best))]
+    for pointers in reversed(back_pointers):
+        path.append(int(pointers[path[-1]]))
+    return path[::-1], float(np.max(best))

@@ -1,12 +1,19 @@
-"""Notebook 03 (BERT), exercise "the vote yourself": reference solution, and answer keys of the chapter's closing
-questions.
+"""Notebook 03 (BERT), exercises "word tags to token labels, from scratch" and "the vote yourself": reference
+solutions, and answer keys of the chapter's closing questions.
 
-Reference solution: try the exercise first (``check_vote(my_vote)`` in the notebook explains the first case your
-vote gets wrong, word by word).
+Reference solutions: try the exercise first (``check_align_labels(align_labels)`` in the notebook names the first
+token your alignment labels wrongly and the slip it looks like; ``check_vote(my_vote)`` explains the first case
+your vote gets wrong, word by word).
 """
 from __future__ import annotations
 
 from collections import Counter
+
+
+def align_labels(word_ids: list[int | None], word_labels: list[int]) -> list[int]:
+    """One label id per token: the label id of the token's word for every sub-word of it (``BertTagger`` trains
+    them all), -100 (ignored by the loss) for the special tokens, whose word id is ``None``."""
+    return [-100 if word is None else word_labels[word] for word in word_ids]
 
 
 def my_vote(token_tags: list[str], word_ids: list[int | None], n_words: int) -> list[str]:

@@ -1,9 +1,13 @@
-"""Notebook 05 (robot control), exercise "softer servos": reference solution.
+"""Notebook 05 (robot control), exercises "softer servos" and, from scratch, "one step of differential IK":
+reference solutions.
 
-Reference solution: try the exercise first (``check_servo_gains(softer, KP_SCALE)`` in the notebook checks your
-gain rule on every joint, then runs a placement with your servos and says why it fails, if it does).
+Reference solutions: try the exercise first (``check_servo_gains(softer, KP_SCALE)`` in the notebook checks your
+gain rule on every joint, then runs a placement with your servos and says why it fails, if it does;
+``check_ik_step(ik_step)`` compares your step with the closed form and tries it on the robot).
 """
 from __future__ import annotations
+
+import numpy as np
 
 from drywall_lab.rc.robot import ServoGains
 
@@ -20,6 +24,17 @@ def softer(gains: ServoGains, kp_scale: float) -> ServoGains:
 #: A tenth of the robot's stiffness: within ``SOFTEST_ASKED`` (0.2), and the placement stays within tolerance;
 #: at 0.02 the servos lag and sag so far that the panel hits something.
 KP_SCALE = 0.1
+
+def ik_step(jacobian: np.ndarray, error: np.ndarray, damping: float) -> np.ndarray:
+    """From scratch: one damped least-squares step of differential IK, dq = J^T (J J^T + damping^2 I)^-1 e.
+
+    It minimises |J dq - e|^2 + damping^2 |dq|^2; the m x m system (m rows of J) is solved, not inverted, and
+    damping^2 I keeps it solvable where J J^T is singular (``check_ik_step(ik_step)`` in the notebook).
+    """
+    J = np.asarray(jacobian, dtype=float)
+    e = np.asarray(error, dtype=float)
+    return J.T @ np.linalg.solve(J @ J.T + damping**2 * np.eye(J.shape[0]), e)
+
 
 #: Notebook 05 ends with no "Questions" cell.
 ANSWERS: dict[int, str] = {}

@@ -284,9 +284,12 @@ def _cmd_experiment(args: argparse.Namespace) -> int:
         run_field_study(args.out or "results/field", FieldStudySettings.fast() if args.fast else FieldStudySettings.full(),
                         args.models, keep_models=None if args.keep_models == "none" else args.keep_models)
         return 0
-    from drywall_lab.nlu.experiments import ExperimentSettings, run_paper_experiment
+    from drywall_lab.nlu.experiments import ExperimentSettings, run_paper_experiment, run_seed_study
 
     settings = ExperimentSettings.fast() if args.fast else ExperimentSettings.paper()
+    if args.study == "seeds":
+        run_seed_study(args.out or "results/paper", settings)
+        return 0
     run_paper_experiment(args.out or "results/paper", settings)
     return 0
 
@@ -318,9 +321,10 @@ def build_parser() -> argparse.ArgumentParser:
     add_tagger_commands(sub)  # train, ensemble, evaluate (drywall_lab/nlu/cli.py)
 
     p = sub.add_parser("experiment", help="paper: the paper's NLU study (LSTM/BERT-M1..M4, BERT-C1..C4, Tables 3-5, "
-                                          "Fig. 13); field: the ablation from the corpus to the field")
-    p.add_argument("study", choices=["paper", "field"])
-    p.add_argument("--out", default=None, help="output folder (default results/paper or results/field)")
+                                          "Fig. 13); seeds: LSTM-M1..M4 and BERT-M4 over three seeds; field: the "
+                                          "ablation from the corpus to the field")
+    p.add_argument("study", choices=["paper", "seeds", "field"])
+    p.add_argument("--out", default=None, help="output folder (default results/paper, or results/field)")
     p.add_argument("--fast", action="store_true", help="an eighth of the data and 3 / 1 epochs: a quick check, not the study")
     p.add_argument("--models", nargs="+", default=None, metavar="MODEL",
                    help='field: train only these models of the ablation, e.g. "MiniLM field" (the others\' rows are '

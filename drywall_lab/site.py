@@ -160,32 +160,13 @@ class Site:
         site_dir = Path(data_dir) / "site" if data_dir is not None else DATA_DIR / "site"
         studs_df = pd.read_csv(site_dir / "studs.csv", dtype={"stud_id": str})
         panels_df = pd.read_csv(site_dir / "panels.csv", dtype={"drywall_id": str})
-        studs = tuple(
-            Stud(
-                stud_id=r.stud_id,
-                index=int(r.index),
-                x_center=float(r.x_center_m),
-                width=float(r.width_m),
-                depth=float(r.depth_m),
-                height=float(r.height_m),
-            )
-            for r in studs_df.sort_values("index").itertuples(index=False)
-        )
-        panels = tuple(
-            Panel(
-                drywall_id=r.drywall_id,
-                stack=r.stack,
-                stack_x=float(r.stack_x_m),
-                level=int(r.level),
-                size_name=r.size_name,
-                w_ft=float(r.w_ft),
-                l_ft=float(r.l_ft),
-                w=float(r.w_m),
-                l=float(r.l_m),
-                thickness=float(r.thickness_m),
-            )
-            for r in panels_df.itertuples(index=False)
-        )
+        studs = tuple(Stud(stud_id=r.stud_id, index=int(r.index), x_center=float(r.x_center_m), width=float(r.width_m),
+                           depth=float(r.depth_m), height=float(r.height_m))
+                      for r in studs_df.sort_values("index").itertuples(index=False))
+        panels = tuple(Panel(drywall_id=r.drywall_id, stack=r.stack, stack_x=float(r.stack_x_m), level=int(r.level),
+                             size_name=r.size_name, w_ft=float(r.w_ft), l_ft=float(r.l_ft), w=float(r.w_m),
+                             l=float(r.l_m), thickness=float(r.thickness_m))
+                       for r in panels_df.itertuples(index=False))
         return cls(studs=studs, panels=panels)
 
     # --- look-ups -----------------------------------------------------------------

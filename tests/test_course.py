@@ -474,3 +474,39 @@ def test_refusal_examples_show_every_reason():
     table = course.refusal_examples(read_corpus())
     assert set(table.reason) == set(REFUSAL_REASONS)
     assert table.message.str.len().min() > 20
+
+
+def test_compact_png_is_a_palette_png_of_the_figure_and_smaller_than_full_colour():
+    import io
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from PIL import Image
+
+    fig, ax = plt.subplots(figsize=(4, 3))
+    ax.imshow(np.random.default_rng(0).normal(size=(30, 30)), cmap="RdBu")  # a heatmap, many colours
+    ax.set_title("transitions")
+    full = io.BytesIO()
+    fig.savefig(full, format="png", dpi=fig.dpi, bbox_inches="tight")
+    small = course.compact_png(fig)
+    plt.close(fig)
+    image, original = Image.open(io.BytesIO(small)), Image.open(io.BytesIO(full.getvalue()))
+    assert image.format == "PNG" and image.mode == "P" and image.size == original.size
+    assert len(image.getcolors(maxcolors=256)) <= 256
+    assert len(small) < 0.6 * len(full.getvalue())
+    assert len(Image.open(io.BytesIO(course.compact_png(plt.figure(), colours=8))).getcolors(maxcolors=8)) <= 8
+
+
+def test_compact_figures_outside_ipython_does_nothing():
+    assert course.compact_figures() is False
+
+
+def test_committed_notebooks_are_small():
+    """The committed notebooks, full-mode outputs included: at most 1 MB each and 3 MB in all."""
+    from pathlib import Path
+
+    sizes = {p.name: p.stat().st_size for p in sorted((Path(__file__).parent.parent / "notebooks").glob("*.ipynb"))}
+    assert len(sizes) == 7
+    assert all(size <= 1_000_000 for size in sizes.values()), sizes
+    assert sum(sizes.values()) <= 3_000_000, sizes

@@ -15,6 +15,7 @@ from conftest import load_benchmark
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from drywall_lab.corpus import read_split
 from drywall_lab.nlu.experiments import (
     MINILM_EPOCHS,
     MINILM_LEARNING_RATE,
@@ -22,6 +23,9 @@ from drywall_lab.nlu.experiments import (
     PAPER_TABLE3,
     ExperimentSettings,
     run_paper_experiment,
+    run_seed_study,
+    seed_summary,
+    study_rerun_lines,
 )
 
 
@@ -78,6 +82,44 @@ def grid_lines(text: str) -> list[dict]:
 
 def point(size: int, lr: float, curve: list[float]) -> dict:
     return {"train_size": size, "learning_rate": lr, "val_acc_inst_by_epoch": curve}
+
+
+def test_seed_study_trains_each_model_once_a_seed_and_summarises_the_spread(tmp_path):
+    tiny = ExperimentSettings(train_sizes={"1": 24, "2": 16, "3": 12, "4": 48}, lstm_epochs=2, bert_epochs=1)
+    rows = run_seed_study(tmp_path, tiny, seeds=(0, 1), models=("LSTM-M4",), log=lambda _: None)
+    table = pd.read_csv(tmp_path / "seeds.csv")
+    assert list(table.columns) == ["model", "seed", "train_instructions", "validation_acc_inst", "novel_acc_inst",
+                                   "novel_acc_task", "train_seconds"]
+    assert table.model.tolist() == ["LSTM-M4"] * 2 and table.seed.tolist() == [0, 1]
+    assert (table.train_instructions == 48).all() and rows.equals(table)
+    summary = seed_summary(table)
+    assert summary.loc["LSTM-M4", ("seeds", "")] == 2
+    assert summary.loc["LSTM-M4", ("novel_acc_inst", "mean")] == pytest.approx(table.novel_acc_inst.mean(), abs=1e-4)
+    assert summary.loc["LSTM-M4", ("validation_acc_inst", "max")] == pytest.approx(table.validation_acc_inst.max(), abs=1e-4)
+    assert "python -m drywall_lab experiment seeds" in (tmp_path / "seeds.md").read_text()
+
+
+def test_seed_zero_is_set_next_to_the_study_run(tmp_path):
+    table = pd.DataFrame({"model": ["LSTM-M4", "LSTM-M4"], "seed": [0, 1], "validation_acc_inst": [0.93, 0.5],
+                          "novel_acc_inst": [0.35, 0.1]})
+    assert study_rerun_lines(table, tmp_path) == []  # no study files: nothing to compare
+    pd.DataFrame({"model": ["LSTM-M4"], "Acc_inst": [0.93]}).to_csv(tmp_path / "table3_validation.csv", index=False)
+    pd.DataFrame({"model": ["LSTM-M4"], "Acc_inst": [0.38]}).to_csv(tmp_path / "novel.csv", index=False)
+    lines = study_rerun_lines(table, tmp_path)
+    n_novel = len(read_split("novel"))
+    row = next(line for line in lines if line.startswith("- LSTM-M4"))
+    assert "validation 93.00% (study 93.00%, +0)" in row
+    assert f"novel 35.00% (study 38.00%, {round(-0.03 * n_novel):+d})" in row
+
+
+def test_seed_summary_of_known_figures():
+    table = pd.DataFrame({"model": ["A", "A", "A", "B"], "seed": [0, 1, 2, 0],
+                          "validation_acc_inst": [0.9, 0.8, 1.0, 0.5], "novel_acc_inst": [0.5, 0.5, 0.5, 0.25]})
+    summary = seed_summary(table)
+    assert summary.loc["A", ("validation_acc_inst", "mean")] == pytest.approx(0.9)
+    assert summary.loc["A", ("validation_acc_inst", "std")] == pytest.approx(0.1)
+    assert summary.loc["A", ("novel_acc_inst", "std")] == 0 and summary.loc["B", ("seeds", "")] == 1
+    assert list(summary.index) == ["A", "B"]
 
 
 def test_the_study_uses_the_recorded_choice():

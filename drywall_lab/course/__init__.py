@@ -52,8 +52,8 @@ from drywall_lab.course.bilstm_crf import (ARCHITECTURE_LAYERS, TOY_EMISSIONS, T
                                            plot_transitions, reference_most_forbidden, tagged_window,
                                            torchcrf_decode, torchcrf_log_likelihood, toy_crf)
 from drywall_lab.course.common import (BENCHMARK_RESULTS, FAST_OFF, FAST_ON, REPO_ROOT, SHARE_COLUMNS, STUDY_DIR,
-                                       ExerciseCheck, call_student, fast_mode, is_unattempted, percent_table,
-                                       solution_file)
+                                       ExerciseCheck, call_student, compact_figures, compact_png, fast_mode,
+                                       is_unattempted, percent_table, solution_file)
 from drywall_lab.course.information_mapping import (COUNT_WORDS, RULE_MAPS, SIZE_NUMBERS, SIZE_SITES, GoldLayoutRun,
                                                     RuleStep, check_relative_stud, check_stacks_of_size,
                                                     draw_rule_path, draw_rule_paths, library_stacks_of_size,
@@ -70,7 +70,7 @@ from drywall_lab.course.taggers import describe_tagger, scores_on_sets, table_3,
 __all__ = [
     # common
     "BENCHMARK_RESULTS", "FAST_OFF", "FAST_ON", "REPO_ROOT", "SHARE_COLUMNS", "STUDY_DIR", "ExerciseCheck",
-    "call_student", "fast_mode", "is_unattempted", "percent_table", "solution_file",
+    "call_student", "compact_figures", "compact_png", "fast_mode", "is_unattempted", "percent_table", "solution_file",
     # taggers
     "describe_tagger", "scores_on_sets", "table_3", "table_3_row", "training_curves",
     # study

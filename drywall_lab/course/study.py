@@ -4,7 +4,8 @@ The study (``results/paper``, written by ``python -m drywall_lab experiment pape
 :func:`accuracy_by_training_size` (Table 3 against training size), :func:`coref_comparison` (Table 5),
 :func:`novel_comparison`, and sentences computed from them (:func:`data_efficiency_finding`,
 :func:`novel_finding`, :func:`coref_finding`); the MiniLM learning rate's choice
-(:func:`minilm_learning_rate_choice`) and the field benchmark (:func:`field_results`).
+(:func:`minilm_learning_rate_choice`) and the field benchmark (:func:`field_results`); the spread over seeds
+(``seeds.csv``, written by ``python -m drywall_lab experiment seeds``): :func:`seed_spread`, :func:`seed_finding`.
 """
 from __future__ import annotations
 
@@ -25,11 +26,13 @@ if TYPE_CHECKING:
 
 def read_study_table(name: str, study_dir: Path | str = STUDY_DIR) -> pd.DataFrame:
     """One CSV of the study (``table3_validation``, ``table5_coref_validation``, ``novel``, ``m1_on_test``,
-    ``training_history``, ``table4_errors_per_tag``, ...); a ``FileNotFoundError`` saying how to write it."""
+    ``training_history``, ``table4_errors_per_tag``, ``seeds``, ...); a ``FileNotFoundError`` saying how to write
+    it."""
     path = Path(study_dir) / f"{name}.csv"
     if not path.is_file():
+        study = "seeds" if name == "seeds" else "paper"
         raise FileNotFoundError(f"{path} does not exist: the study writes it with "
-                                f"`python -m drywall_lab experiment paper --out {study_dir}`")
+                                f"`python -m drywall_lab experiment {study} --out {study_dir}`")
     return pd.read_csv(path, index_col=0 if name.startswith("table4") else None)
 
 
@@ -69,6 +72,30 @@ def _model_parts(model: str) -> tuple[str, str, str]:
     if not match:
         raise ValueError(f"{model!r} is not a study model name like 'LSTM-M4' or 'BERT-C1'")
     return match.group(1), match.group(2), match.group(3)
+
+
+def study_model(tagger: str, n_train: int, train_sizes: Mapping[str, int]) -> str:
+    """The study's model of ``tagger`` ("LSTM" or "BERT") trained on ``n_train`` instructions, e.g. "LSTM-M4" for
+    316 (``train_sizes`` as :func:`study_settings` gives them); a ``ValueError`` when the study has no such size."""
+    if tagger not in TAGGER_NAMES:
+        raise ValueError(f"{tagger!r} is not one of the study's taggers {sorted(TAGGER_NAMES)}")
+    for key, n in train_sizes.items():
+        if int(n) == n_train:
+            return f"{tagger}-M{key}"
+    raise ValueError(f"the study trained on {sorted(int(n) for n in train_sizes.values())} instructions, "
+                     f"not on {n_train}")
+
+
+#: Table 3's columns (plus ``acc_task``), as ``drywall_lab.course.table_3`` gives them.
+TABLE3_COLUMNS = ["N_w", "Acc_word", "N_l", "Acc_inst", "acc_task"]
+
+
+def study_rows(name: str, tagger: str, study_dir: Path | str = STUDY_DIR) -> pd.DataFrame:
+    """One tagger's rows ("LSTM" or "BERT") of one of the study's per-model CSVs (``table3_validation``,
+    ``m1_on_test``, ``novel``), indexed by model, with Table 3's columns (plus ``acc_task``): to set next to a
+    demonstration run's ``table_3``."""
+    table = read_study_table(name, study_dir)
+    return table[table["model"].str.startswith(f"{tagger}-")].set_index("model")[TABLE3_COLUMNS]
 
 
 def accuracy_by_training_size(table3: pd.DataFrame, train_sizes: Mapping[str, int]) -> pd.DataFrame:
@@ -168,6 +195,85 @@ def novel_finding(table3: pd.DataFrame, novel: pd.DataFrame, models: Sequence[st
         return "The study has none of the models " + ", ".join(models) + "."
     best = frame.loc[[m for m in models if m in frame.index], "novel Acc_inst"].idxmax()
     return "; ".join(parts) + f". On the novel split {best} is ahead on Acc_inst."
+
+
+#: The Acc_inst columns of ``seeds.csv`` that :func:`seed_spread` summarises, by split.
+SEED_SPLITS = {"validation": "validation_acc_inst", "novel": "novel_acc_inst"}
+#: The statistics over the seeds, in :func:`seed_spread`'s column names ("validation mean", "novel sd", ...).
+SEED_STATISTICS = {"mean": "mean", "sd": "std", "min": "min", "max": "max"}
+
+
+def seed_spread(seeds: pd.DataFrame | None = None, study_dir: Path | str = STUDY_DIR) -> pd.DataFrame:
+    """How much a model's Acc_inst moves with the random seed alone: one row a model (in the file's order), the
+    number of seeds, its training instructions, and the mean, standard deviation (over the seeds, n - 1), min and
+    max of its validation and novel Acc_inst. ``seeds`` is ``seeds.csv`` (one row a model and seed), read from
+    ``study_dir`` when not given."""
+    if seeds is None:
+        seeds = read_study_table("seeds", study_dir)
+    needed = {"model", "seed", "train_instructions", *SEED_SPLITS.values()}
+    if missing := needed - set(seeds.columns):
+        raise ValueError(f"the seed table lacks the columns {sorted(missing)}")
+    if seeds.empty:
+        raise ValueError("the seed table has no rows")
+    if seeds.duplicated(["model", "seed"]).any():
+        raise ValueError("the seed table has a model and seed twice")
+    groups = seeds.groupby("model", sort=False)
+    if (groups["train_instructions"].nunique() > 1).any():
+        raise ValueError("a model of the seed table was trained on different numbers of instructions")
+    frame = pd.DataFrame({"seeds": groups["seed"].nunique(),
+                          "training instructions": groups["train_instructions"].first()})
+    for split, column in SEED_SPLITS.items():
+        for name, statistic in SEED_STATISTICS.items():
+            frame[f"{split} {name}"] = groups[column].agg(statistic)
+    return frame
+
+
+def seed_share_columns(spread: pd.DataFrame) -> list[str]:
+    """The columns of :func:`seed_spread`'s table that are shares (for ``percent_table``)."""
+    return [c for c in spread if c.split(" ")[0] in SEED_SPLITS]
+
+
+def _spread_text(row: pd.Series, split: str) -> str:
+    """"92.41% ± 1.10% (91.14% to 93.67%)", or the one value where there is a single seed."""
+    if row["seeds"] < 2:
+        return f"{_pct(row[f'{split} mean'])} (one seed: no spread)"
+    return (f"{_pct(row[f'{split} mean'])} ± {_pct(row[f'{split} sd'])} "
+            f"({_pct(row[f'{split} min'])} to {_pct(row[f'{split} max'])})")
+
+
+def _spread_comparison(first: str, second: str, a: pd.Series, b: pd.Series, split: str) -> str:
+    """Which of two models is ahead on a split's mean, and whether their seeds' ranges separate them."""
+    mean_a, mean_b = a[f"{split} mean"], b[f"{split} mean"]
+    if mean_a == mean_b:
+        return f"on the {split} split the two means are equal"
+    ahead, behind, top, bottom = (first, second, a, b) if mean_a > mean_b else (second, first, b, a)
+    text = f"on the {split} split {ahead} is ahead by {abs(mean_a - mean_b) * 100:.2f} points on the mean"
+    if top[f"{split} min"] > bottom[f"{split} max"]:
+        return text + f", and every seed of {ahead} is above every seed of {behind}"
+    return text + (f", but the seeds' ranges overlap (the best seed of {behind} is at least as good as the worst "
+                   f"of {ahead}): the difference is within what the seed alone moves")
+
+
+def seed_finding(spread: pd.DataFrame, models: Sequence[str] = ("LSTM-M4", "BERT-M4")) -> str:
+    """The paper's data-efficiency comparison (M4: BiLSTM-CRF against BERT with the fewest training instructions)
+    over the seeds, in words computed from :func:`seed_spread`'s table: mean ± standard deviation (min to max) of
+    each on the validation and novel splits, and whether the seeds' ranges separate them."""
+    first, second = models
+    absent = [m for m in models if m not in spread.index]
+    if absent:
+        return "The seed table has no row for " + " or ".join(absent) + "."
+    a, b = spread.loc[first], spread.loc[second]
+    n_a, n_b = int(a["seeds"]), int(b["seeds"])
+    seeds = f"{n_a} seeds" if n_a == n_b else f"{n_a} and {n_b} seeds"
+    sizes = (f"{int(a['training instructions'])} training instructions each"
+             if a["training instructions"] == b["training instructions"]
+             else f"{int(a['training instructions'])} and {int(b['training instructions'])} training instructions")
+    parts = [f"Over {seeds} ({sizes}), mean ± standard deviation (min to max) of Acc_inst: "
+             f"{first} {_spread_text(a, 'validation')} on the validation split and {_spread_text(a, 'novel')} on "
+             f"the novel one; {second} {_spread_text(b, 'validation')} and {_spread_text(b, 'novel')}."]
+    comparisons = [_spread_comparison(first, second, a, b, split) for split in SEED_SPLITS]
+    parts.append(comparisons[0][0].upper() + comparisons[0][1:] + "; " + comparisons[1] + ".")
+    return " ".join(parts)
 
 
 def coref_comparison(table3: pd.DataFrame, table5: pd.DataFrame, train_sizes: Mapping[str, int]) -> pd.DataFrame:

@@ -208,6 +208,8 @@ def seed_spread(seeds: pd.DataFrame | None = None, study_dir: Path | str = STUDY
     number of seeds, its training instructions, and the mean, standard deviation (over the seeds, n - 1), min and
     max of its validation and novel Acc_inst. ``seeds`` is ``seeds.csv`` (one row a model and seed), read from
     ``study_dir`` when not given."""
+    from drywall_lab.nlu.experiments import seed_summary
+
     if seeds is None:
         seeds = read_study_table("seeds", study_dir)
     needed = {"model", "seed", "train_instructions", *SEED_SPLITS.values()}
@@ -220,11 +222,12 @@ def seed_spread(seeds: pd.DataFrame | None = None, study_dir: Path | str = STUDY
     groups = seeds.groupby("model", sort=False)
     if (groups["train_instructions"].nunique() > 1).any():
         raise ValueError("a model of the seed table was trained on different numbers of instructions")
-    frame = pd.DataFrame({"seeds": groups["seed"].nunique(),
+    summary = seed_summary(seeds)
+    frame = pd.DataFrame({"seeds": summary[("seeds", "")],
                           "training instructions": groups["train_instructions"].first()})
     for split, column in SEED_SPLITS.items():
         for name, statistic in SEED_STATISTICS.items():
-            frame[f"{split} {name}"] = groups[column].agg(statistic)
+            frame[f"{split} {name}"] = summary[(column, statistic)]
     return frame
 
 

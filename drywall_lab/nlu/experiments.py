@@ -224,28 +224,28 @@ def run_seed_study(out_dir: Path | str, settings: ExperimentSettings | None = No
             log("  " + json.dumps(rows[-1]))
     table = pd.DataFrame(rows)
     table.to_csv(out / "seeds.csv", index=False)
-    spread = seed_summary(table)
+    spread = seed_summary(table).round(4)
     wall = time.perf_counter() - started
     lines = ["# The paper's models over three seeds", "",
              f"Written by `python -m drywall_lab experiment seeds` ({wall / 60:.1f} min). Machine: {machine.summary()}; "
              f"load average at the end {format_load(load_average())}.", "",
              "Each model trained as in the study (`README.md` here), once a seed; Acc_inst on the validation and "
              "novel splits (`seeds.csv`, one row a model and seed).", "", "```", spread.to_string(), "```", ""]
-    lines += study_rerun_lines(table, out)
+    lines += study_rerun_lines(table, out, len(validation), len(novel))
     (out / "seeds.md").write_text("\n".join(lines), encoding="utf-8")
     log(f"wrote {out / 'seeds.csv'} in {wall:.0f} s")
     return table
 
 
-def study_rerun_lines(table: pd.DataFrame, study_dir: Path) -> list[str]:
+def study_rerun_lines(table: pd.DataFrame, study_dir: Path, n_validation: int, n_novel: int) -> list[str]:
     """Seed 0 is the study's own seed: its runs set next to the study's (``table3_validation.csv``, ``novel.csv`` in
-    ``study_dir``), instructions of difference counted; no lines where the study's files are absent."""
+    ``study_dir``), the difference counted in instructions of the validation and novel splits (``n_validation``,
+    ``n_novel`` of them); no lines where the study's files are absent."""
     paths = [study_dir / "table3_validation.csv", study_dir / "novel.csv"]
     rerun = table[table["seed"] == 0].set_index("model")
     if rerun.empty or not all(p.is_file() for p in paths):
         return []
     validation, novel = (pd.read_csv(p).set_index("model")["Acc_inst"] for p in paths)
-    n_validation, n_novel = len(read_split("validation")), len(read_split("novel"))
     lines = ["Seed 0 is the study's seed; its runs against the study's (Acc_inst, the difference in instructions):",
              ""]
     for model, row in rerun.iterrows():
@@ -262,11 +262,13 @@ def study_rerun_lines(table: pd.DataFrame, study_dir: Path) -> list[str]:
 
 
 def seed_summary(table: pd.DataFrame) -> pd.DataFrame:
-    """Mean, standard deviation, min and max over the seeds of each model's validation and novel Acc_inst."""
-    stats = table.groupby("model", sort=False)[["validation_acc_inst", "novel_acc_inst"]].agg(
-        ["mean", "std", "min", "max"])
-    stats.insert(0, ("seeds", ""), table.groupby("model", sort=False)["seed"].nunique())
-    return stats.round(4)
+    """Mean, standard deviation (over the seeds, n - 1), min and max of each model's validation and novel Acc_inst,
+    with its number of seeds; one row a model, in the table's order (``drywall_lab.course.seed_spread`` names the
+    columns for the notebooks)."""
+    groups = table.groupby("model", sort=False)
+    stats = groups[["validation_acc_inst", "novel_acc_inst"]].agg(["mean", "std", "min", "max"])
+    stats.insert(0, ("seeds", ""), groups["seed"].nunique())
+    return stats
 
 
 def target_lines(tables: dict[str, pd.DataFrame]) -> list[str]:

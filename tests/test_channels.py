@@ -121,3 +121,39 @@ def test_asides_are_composed_and_all_o():
     for _ in range(30):
         out = C.asides(ch, [list(sentence), list(sentence)])
         assert [t.tag for s in out for t in s if t.is_word and t.tag != "O"] == ["width", "ID_stud"] * 2
+
+
+@pytest.mark.parametrize("tagged", [
+    "grab the 2x8/width sheet and put it on 500104/ID_stud centre/Vr_md line/Vr_md",
+    "one from the middle/Dw_loc1 pile on 500104/ID_stud",
+    "hang the panel 500310/ID_wall on stud 500104/ID_stud",
+    "put a full-size/dim board on 500106/ID_stud",
+])
+def test_site_references_name_the_panel_first_and_keep_the_outcome(tagged):
+    """``site_references``: the panel or its stack named first and pointed back at ("the middle pile has the ones we
+    want, one from that pile ..."), or a size said as what is left of it; the tagged words move with their tags, the
+    added words are ``O``, and the IM reads the same command as before the rewrite."""
+    from drywall_lab.im import ActionHistory, interpret
+
+    sentence = _sentence(tagged)
+    before = interpret([t.word for t in sentence], [t.tag for t in sentence], history=ActionHistory()).outcome()
+    ch = Chooser(random.Random(6))
+    said = set()
+    for _ in range(40):
+        out = C.site_references(ch, [list(sentence)])
+        words = [t.word for s in out for t in s if t.is_word]
+        tags = [t.tag for s in out for t in s if t.is_word]
+        assert sorted(t for t in tags if t != "O") == sorted(t.tag for t in sentence if t.tag != "O"), words
+        assert interpret(words, tags, history=ActionHistory()).outcome() == before, words
+        said.add(_words(out))
+    assert len(said) > 3 and all(s != _words([sentence]) for s in said)  # always rewritten, in several ways
+
+
+def test_site_references_leave_a_bare_number_or_a_spread_target_alone():
+    """A size said as a bare number ("width of two") is no thing to point back at; a target whose words are spread
+    over the sentence is left as it is."""
+    ch = Chooser(random.Random(7))
+    for tagged in ["get the board width of two/width on 500104/ID_stud",
+                   "the 4/width sheet by the door 8/length long on 500104/ID_stud"]:
+        sentence = _sentence(tagged)
+        assert C.site_references(ch, [list(sentence)]) == [sentence]

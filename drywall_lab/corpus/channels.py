@@ -11,7 +11,10 @@ keeping the meaning and carrying every word's tag along:
   ("the four by- no, the 2x8"), a trailing confirmation ("yeah, that one");
 - ``asides``: a reason or remark around the instruction that names sizes, rows, counts and positions of other
   things ("the top of that pile is chipped", "the 4x8s are heavy") and so must all be ``O``;
-- ``plural_sizes``: a panel named as one of its size ("one of the 2x8s").
+- ``plural_sizes``: a panel named as one of its size ("one of the 2x8s");
+- ``site_references``: the panel or its stack named first and pointed back at inside the instruction ("the middle
+  pile has the ones we want, one from that pile ...", "panel 500310 is next, hang it ..."), or a size said as what is
+  left of it ("whatever is left of the full sheets").
 
 The front end (``drywall_lab.nlu.normalise``) reads the first three back into the corpus's written forms; the
 tagger must learn the others. Whole channels and pairs of channels are held back from the training splits
@@ -355,6 +358,111 @@ def relative_talk(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
+# --- references inside the instruction ------------------------------------------------------------------------
+_TARGET_TAGS = frozenset({"ID_wall", "dim", "length", "width", "Dw_loc1"})
+#: ``O`` words a size or a stack may hold between its tagged words ("2 x 8", "four foot by eight", "full size").
+_SPAN_LINKS = frozenset({"x", "by", "-", "foot", "feet", "ft", "wide", "long", "tall", "high", "across", "size", "'",
+                         "inch", "inches", "hand", "side"})
+_UNIT_WORDS = frozenset({"wide", "long", "tall", "high", "foot", "feet", "ft", "size", "'"})
+_ID_LEADS = frozenset({"labelled", "labeled", "marked", "tagged", "with", "id", "number", "no.", "#"})
+_DETERMINERS = frozenset({"the", "a", "an", "one"})
+_NOUNS = _PANEL_WORDS - {"one"} | {"of", "sheets", "panels", "boards", "pieces", "rocks"}
+#: What the first mention says of its referent; the instruction then points back at it (all ``O``).
+NAMED_FIRST: dict[str, tuple[tuple[str, ...], ...]] = {
+    "size": (("are", "the", "ones", "we", "want"), ("are", "next"), ("are", "what", "we", "need"),
+             ("are", "over", "there")),
+    "stack": (("has", "the", "ones", "we", "want"), ("is", "where", "they", "are"), ("holds", "what", "we", "need"),
+              ("is", "the", "one", "to", "use")),
+    "id": (("is", "next"), ("is", "the", "one"), ("is", "what", "we", "need")),
+}
+POINTING_BACK: dict[str, tuple[tuple[str, ...], ...]] = {
+    "size": (("one", "of", "those"), ("one", "of", "them"), ("one",), ("one", "of", "'em")),
+    "stack": (("that", "{stack}"), ("that", "one"), ("it",)),
+    "id": (("it",), ("that", "one"), ("that", "{noun}")),
+}
+WHAT_IS_LEFT = (("whatever", "is", "left", "of", "the"), ("one", "of", "whatever"), ("one", "of", "the", "remaining"),
+                ("what's", "left", "of", "the"))
+
+
+def _extend_left(sentence: Phrase, a: int, words: frozenset[str] | set[str]) -> int:
+    while a and sentence[a - 1].is_word and sentence[a - 1].tag == "O" and sentence[a - 1].word.lower() in words:
+        a -= 1
+    return a
+
+
+def _target_span(sentence: Phrase) -> tuple[int, int, str] | None:
+    """Where one sentence names the panel or its stack in one stretch, with its article and noun: ``(start, end,
+    kind)``, kind ``size``, ``stack`` or ``id``; None where the words of the target are spread out, or a size is a
+    bare number ("width of two")."""
+    tagged = [i for i, t in enumerate(sentence) if t.is_word and t.tag in _TARGET_TAGS]
+    if not tagged or any(t.is_word and t.tag == "Dw_loc2" for t in sentence):
+        return None
+    a, b = tagged[0], tagged[-1] + 1
+    if any(not t.is_word or (t.tag == "O" and t.word.lower() not in _SPAN_LINKS) or
+           (t.tag != "O" and t.tag not in _TARGET_TAGS) for t in sentence[a:b]):
+        return None
+    tags = {t.tag for t in sentence[a:b]} - {"O"}
+    kind = "id" if tags == {"ID_wall"} else "stack" if tags == {"Dw_loc1"} else \
+        "size" if tags <= {"dim", "length", "width"} else None
+    b_links = b
+    while b_links < len(sentence) and sentence[b_links].is_word and sentence[b_links].tag == "O" and \
+            sentence[b_links].word.lower() in _UNIT_WORDS:
+        b_links += 1
+    if kind == "size":
+        b = b_links
+        said = sentence[a:b]
+        has_unit = any(t.tag == "O" for t in said) or "dim" in tags or {"width", "length"} <= tags or \
+            any("x" in t.word.lower() and any(c.isdigit() for c in t.word) for t in said)
+        if not has_unit:
+            return None
+    while b < len(sentence) and sentence[b].is_word and sentence[b].tag == "O" and \
+            sentence[b].word.lower() in (_NOUNS | STACK_WORDS if kind == "stack" else _NOUNS):
+        b += 1
+    a = _extend_left(sentence, a, _NOUNS | (_ID_LEADS if kind == "id" else set()))
+    a = _extend_left(sentence, a, _DETERMINERS | {"second", "more", "another"})
+    if a >= 2 and [t.word.lower() for t in sentence[a - 2:a] if t.is_word] == ["one", "of"]:
+        a -= 2
+    if kind == "stack" and STACK_WORDS.isdisjoint(t.word.lower() for t in sentence[a:b]):
+        return None  # "the one on the right": no stack to name first
+    if kind == "id" and [t.word.lower() for t in sentence[b:b + 2] if t.is_word] == ["on", "it"]:
+        b += 2  # "the one with 500310 on it"
+    return (a, b, kind) if kind else None
+
+
+def site_references(ch: Chooser, sentences: Sentences) -> Sentences:
+    """The panel or its stack named first, the instruction pointing back at it: "the 2x8 sheets are over there. Put
+    one of those on 500104", "the middle pile has the ones we want; grab one from that pile", "panel 500310 is next,
+    hang it ..."; or a size said as what is left of it ("whatever is left of the full sheets"). The tagged words
+    move with their tags; every word added is ``O``."""
+    rng = ch.rng
+    found = [(k, span) for k, s in enumerate(sentences) if (span := _target_span(s))]
+    if len(found) != 1:
+        return sentences
+    k, (a, b, kind) = found[0]
+    sentence = sentences[k]
+    named = [t for t in sentence[a:b] if t.tag != "O" or t.word.lower() in _SPAN_LINKS | STACK_WORDS]
+    nouns = [t for t in sentence[a:b] if t.tag == "O" and t.word.lower() in _NOUNS]
+    if kind == "size" and rng.random() < 0.35:  # "whatever is left of the full sheets"
+        plural = _plain(rng.choice(("sheets", "panels", "boards", "ones")))
+        left = _plain(*rng.choice(WHAT_IS_LEFT))
+        tail = _plain("are", "left") if left[-1].word == "whatever" else []
+        return sentences[:k] + [sentence[:a] + left + named + plural + tail + sentence[b:]] + sentences[k + 1:]
+    if kind == "size":
+        first = _plain("the") + named + _plain(rng.choice(("sheets", "panels", "boards")))
+    elif kind == "stack":
+        first = _plain("the") + named
+    else:
+        first = (nouns[:1] or _plain("panel")) + [t for t in named if t.tag == "ID_wall"]
+    first += _plain(*rng.choice(NAMED_FIRST[kind]))
+    stack = next((t.word for t in named if t.word.lower() in STACK_WORDS), "pile")
+    back = [w.replace("{stack}", stack).replace("{noun}", nouns[0].word if nouns else "panel")
+            for w in rng.choice(POINTING_BACK[kind])]
+    rest = sentence[:a] + _plain(*back) + sentence[b:]
+    if rng.random() < 0.5:
+        return sentences[:k] + [first + [Token(".", None, None)], rest] + sentences[k + 1:]
+    return sentences[:k] + [first + [Token(",", None, None)] + rest] + sentences[k + 1:]
+
+
 # --- plural sizes ---------------------------------------------------------------------------------------------
 def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
     """A size said in one word after an article is one of that size: "the 2x8" -> "one of the 2x8s"."""
@@ -373,16 +481,18 @@ def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
 
 
 CHANNELS: dict[str, Channel] = {
-    "stack_talk": stack_talk, "relative_talk": relative_talk, "spoken_ids": spoken_ids, "shorthand": shorthand,
+    "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk, "spoken_ids": spoken_ids, "shorthand": shorthand,
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes,
 }
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
-CHANNEL_RATES: dict[str, float] = {"stack_talk": 0.12, "relative_talk": 0.35, "spoken_ids": 0.15, "shorthand": 0.12,
-                                   "disfluency": 0.15, "asides": 0.15, "plural_sizes": 0.10}
+CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, "relative_talk": 0.35,
+                                   "spoken_ids": 0.15, "shorthand": 0.12, "disfluency": 0.15, "asides": 0.15,
+                                   "plural_sizes": 0.10}
 #: Held back whole: never in train, validation or test; the novel split uses it.
 HELD_BACK: tuple[str, ...] = ("shorthand",)
 #: Held back as a pair: each channel is met alone in training, never both at once.
-HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"))
+HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
+                                                ("site_references", "relative_talk"))
 
 
 def choose_channels(rng: random.Random, novel: bool) -> tuple[str, ...]:

@@ -157,3 +157,25 @@ def test_site_references_leave_a_bare_number_or_a_spread_target_alone():
                    "the 4/width sheet by the door 8/length long on 500104/ID_stud"]:
         sentence = _sentence(tagged)
         assert C.site_references(ch, [list(sentence)]) == [sentence]
+
+
+def test_metric_sizes_say_the_sides_in_metric_and_the_front_end_reads_them_back():
+    """``metric_sizes`` (held back whole): the sides in millimetres, centimetres or metres, their tags kept; the front
+    end (``normalise.metric_sizes``) reads them as the feet they stand for, so the IM reads the same panel."""
+    from drywall_lab.im import ActionHistory, interpret
+    from drywall_lab.nlu.normalise import normalise
+
+    ch = Chooser(random.Random(8))
+    said = set()
+    for tagged in ["put the 2x8/width on 500104/ID_stud", "a 4/width by 6/length board on 500104/ID_stud",
+                   "the 2/width foot wide one on 500104/ID_stud", "the four-by-eight/width on 500104/ID_stud"]:
+        sentence = _sentence(tagged)
+        before = interpret([t.word for t in sentence], [t.tag for t in sentence], history=ActionHistory()).outcome()
+        for _ in range(15):
+            out = C.metric_sizes(ch, [list(sentence)])
+            text = _words(out)
+            said.add(text)
+            read = normalise(text)
+            tags = read.tags_of_words([t.tag for s in out for t in s if t.is_word])
+            assert interpret(list(read.words), tags, history=ActionHistory()).outcome() == before, (text, read.words)
+    assert {"600x2400", "1.2", "120"} <= {w.removesuffix("mm").removesuffix("cm") for s in said for w in s.split()}

@@ -49,6 +49,23 @@ def test_sizes_in_the_plural_name_one_panel_and_counts_stay_as_said(said, read):
 
 
 @pytest.mark.parametrize("said, read", [
+    ("hang a 1200x2400 sheet on 500104", "hang a 4x8 sheet on 500104"),
+    ("a sheet of 600 millimetres by 2400", "a sheet of 2 ft by 8"),
+    ("the 1.2 m x 1.8 m board", "the 4 ft x 6 ft board"),
+    ("120 cm by 240 cm", "4 ft by 8 ft"),
+    ("2400 mm long by 1200 wide", "8 ft long by 4 wide"),
+    ("a 1,200 by 2,400 one", "a 4 by 8 one"),
+    ("one 1.2m wide", "one 4ft wide"),
+    ("fix with 25 mm screws at 406 mm centres", "fix with 25 mm screws at 406 mm centres"),  # no board's side
+    ("keep 1200 clear of the door", "keep 1200 clear of the door"),  # a lone number without a unit
+    ("two by 4 x 8 then", "two by 4 x 8 then"),  # feet stay feet
+    ("2nd frm r", "2nd frm right"),  # a texted "from" before a side letter
+])
+def test_metric_sides_are_read_as_the_feet_they_stand_for(said, read):
+    assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
     ("PNL: 2x8 | STUD: 500106 | BTM", "panel 2x8 | STUD 500106 | bottom"),
     ("Stud:500104 -> vert w/ CL", "Stud 500104 -> vertical with centre line"),
     ("2nd from R", "2nd from right"),

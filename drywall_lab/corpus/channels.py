@@ -12,18 +12,20 @@ keeping the meaning and carrying every word's tag along:
 - ``asides``: a reason or remark around the instruction that names sizes, rows, counts and positions of other
   things ("the top of that pile is chipped", "the 4x8s are heavy") and so must all be ``O``;
 - ``plural_sizes``: a panel named as one of its size ("one of the 2x8s");
+- ``metric_sizes``: a panel's sides in millimetres, centimetres or metres ("1200 x 2400", "a 600 mm wide one");
 - ``site_references``: the panel or its stack named first and pointed back at inside the instruction ("the middle
   pile has the ones we want, one from that pile ...", "panel 500310 is next, hang it ..."), or a size said as what is
   left of it ("whatever is left of the full sheets").
 
-The front end (``drywall_lab.nlu.normalise``) reads the first three back into the corpus's written forms; the
-tagger must learn the others. Whole channels and pairs of channels are held back from the training splits
-(``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction said in a
-way the tagger never met (first sight).
+The front end (``drywall_lab.nlu.normalise``) reads the first three and the metric sides back into the corpus's
+written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
+training splits (``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction
+said in a way the tagger never met (first sight).
 """
 from __future__ import annotations
 
 import random
+import re
 from typing import Callable
 
 from drywall_lab.corpus.markup import Phrase, Token
@@ -358,6 +360,60 @@ def relative_talk(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
+# --- metric sizes ---------------------------------------------------------------------------------------------
+_FEET_WORDS = {"two": 2, "four": 4, "six": 6, "eight": 8, "2": 2, "4": 4, "6": 6, "8": 8}
+_METRIC = {"mm": {2: "600", 4: "1200", 6: "1800", 8: "2400"}, "m": {2: "0.6", 4: "1.2", 6: "1.8", 8: "2.4"},
+           "cm": {2: "60", 4: "120", 6: "180", 8: "240"}}
+METRIC_UNIT_WORDS = {"mm": ("mm", "mil", "millimetres"), "m": ("m", "metres", "meters"), "cm": ("cm", "centimetres")}
+_ONE_SIDE = re.compile(r"^(two|four|six|eight|[2468])(?:'|ft|-foot|-ft)?$", re.I)
+_BOTH_SIDES = re.compile(r"^(two|four|six|eight|[2468])'?\s*(?:x|-by-|by)\s*(two|four|six|eight|[2468])'?$", re.I)
+_FOOT_UNITS = frozenset({"foot", "feet", "ft", "'", "ft."})
+
+
+def metric_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
+    """A panel's sides said in metric, as a worker used to metric boards says them: "1200 x 2400", "a 600 mm wide
+    one", "1.2 by 1.8", "120 cm by 240 cm" (one unit an instruction). The numbers keep their tags; a foot unit
+    becomes the metric one, and a side said alone gets its unit."""
+    rng = ch.rng
+    unit = rng.choice(("mm", "mm", "m", "cm"))
+    table = _METRIC[unit]
+
+    def side(word: str) -> int | None:
+        m = _ONE_SIDE.match(word)
+        return _FEET_WORDS[m.group(1).lower()] if m else None
+
+    out: Sentences = []
+    for sentence in sentences:
+        new: Phrase = []
+        for i, tok in enumerate(sentence):
+            if not (tok.is_word and tok.tag in ("width", "length")):
+                if tok.is_word and tok.word.lower() in _FOOT_UNITS and new and new[-1].tag in ("width", "length") \
+                        and new[-1].word in table.values():
+                    new.append(Token(rng.choice(METRIC_UNIT_WORDS[unit]), "O", "O"))  # "4 foot" -> "1200 mm"
+                    continue
+                new.append(tok)
+                continue
+            both = _BOTH_SIDES.match(tok.word)
+            if both:
+                a, b = (table[_FEET_WORDS[g.lower()]] for g in both.groups())
+                suffix = unit if unit == "cm" or (unit == "mm" and rng.random() < 0.3) else ""  # "1200x2400mm"
+                new.append(Token(f"{a}x{b}{suffix}", tok.tag, tok.coref))
+                continue
+            feet = side(tok.word)
+            if feet is None:
+                new.append(tok)
+                continue
+            new.append(Token(table[feet], tok.tag, tok.coref))
+            ahead = [t.word.lower() for t in sentence[i + 1:i + 3] if t.is_word]
+            behind = new[-2].word.lower() if len(new) > 1 and new[-2].is_word else ""
+            paired = behind in ("x", "by") or any(w in ("x", "by") for w in ahead)  # "1200 by 2400": no unit needed
+            said_unit = bool(ahead) and ahead[0] in _FOOT_UNITS  # the foot unit after it becomes the metric one
+            if not said_unit and (unit == "cm" or not paired):
+                new.append(Token(rng.choice(METRIC_UNIT_WORDS[unit]), "O", "O"))  # "the 600 mm wide one"
+        out.append(new)
+    return out
+
+
 # --- references inside the instruction ------------------------------------------------------------------------
 _TARGET_TAGS = frozenset({"ID_wall", "dim", "length", "width", "Dw_loc1"})
 #: ``O`` words a size or a stack may hold between its tagged words ("2 x 8", "four foot by eight", "full size").
@@ -482,14 +538,14 @@ def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
 
 CHANNELS: dict[str, Channel] = {
     "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk, "spoken_ids": spoken_ids, "shorthand": shorthand,
-    "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes,
+    "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
 }
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
 CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, "relative_talk": 0.35,
                                    "spoken_ids": 0.15, "shorthand": 0.12, "disfluency": 0.15, "asides": 0.15,
                                    "plural_sizes": 0.10}
 #: Held back whole: never in train, validation or test; the novel split uses it.
-HELD_BACK: tuple[str, ...] = ("shorthand",)
+HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))

@@ -1,13 +1,14 @@
 """The front end before tagging: the worker's words, as typed or spoken, to the words the tagger reads (issue 29).
 
-People say and type the same instruction in many surface forms: an id read out digit by digit ("five oh oh one
-oh eight", "five double-oh one one two", "five hundred one-oh-eight") or split ("500 104", "500-104"), a size in
-the plural ("one of the 2x8s"), the site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields
-separated by ``|`` or ``->``), and spoken disfluency (fillers, stutters, a false start broken off with a dash and
-repaired: "the four by- no, the two by eight"). The paper's tagger (Sec. 3.1) learns surface forms from its
-corpus; a form it never met is a guess. This module reads every such form into one written form first, for
-training and prediction alike (``drywall_lab.corpus.field_generator`` writes its rows through it), so that a
-new voice reaches the tagger in words it knows.
+People say and type the same instruction in many surface forms: an id read out digit by digit ("five oh oh one oh
+eight", "five double-oh one one two", "five hundred one-oh-eight") or split ("500 104", "500-104"), a size in the
+plural ("one of the 2x8s"), a board's sides in metric ("1200 x 2400", "600 mm wide": the feet they stand for), the
+site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields separated by ``|`` or ``->``), and spoken
+disfluency (fillers, stutters, a false start broken off with a dash and repaired: "the four by- no, the two by
+eight"). The paper's tagger (Sec. 3.1) learns surface forms from its corpus; a form it never met is a guess. This
+module reads every such form into one written form first, for training and prediction alike
+(``drywall_lab.corpus.field_generator`` writes its rows through it), so that a new voice reaches the tagger in
+words it knows.
 
 It is a small grammar of the project's own, not a general inverse text normaliser: the comparison on a table of
 site forms (``benchmarks/normalisers.py``, ``benchmarks/results/normalisers.md``) found that the general
@@ -380,6 +381,61 @@ def singular_sizes(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     return out
 
 
+# --- metric sizes -------------------------------------------------------------------------------------------
+#: A board's nominal metric sides and the feet they stand for, by unit (1200 x 2400 mm is the metric 4 x 8 sheet;
+#: spec section 1 gives the panels in feet, "what people say").
+METRIC_SIDES: dict[str, dict[str, str]] = {
+    "mm": {"600": "2", "610": "2", "1200": "4", "1220": "4", "1800": "6", "1830": "6", "2400": "8", "2440": "8"},
+    "cm": {"60": "2", "61": "2", "120": "4", "122": "4", "180": "6", "183": "6", "240": "8", "244": "8"},
+    "m": {"0.6": "2", "0.61": "2", "1.2": "4", "1.22": "4", "1.8": "6", "1.83": "6", "2.4": "8", "2.44": "8"},
+}
+METRIC_UNITS: dict[str, str] = {
+    **dict.fromkeys(("mm", "mil", "mils", "millimetre", "millimetres", "millimeter", "millimeters"), "mm"),
+    **dict.fromkeys(("cm", "cms", "centimetre", "centimetres", "centimeter", "centimeters"), "cm"),
+    **dict.fromkeys(("m", "metre", "metres", "meter", "meters"), "m"),
+}
+_WITH_UNIT = re.compile(r"^(\d+(?:[.,]\d+)?)(mm|cm|m)$", re.I)
+_METRIC_PAIR = re.compile(r"^(\d+(?:\.\d+)?)[x×*](\d+(?:\.\d+)?)(mm|cm|m)?$", re.I)
+_SIDE_WORDS = frozenset({"wide", "long", "high", "tall", "across"})
+
+
+def _feet(number: str, unit: str | None) -> str | None:
+    """The feet a nominal metric side stands for ("1200", "mm" -> "4"); without a unit, millimetres or metres."""
+    number = number.replace(",", "") if unit != "m" and re.fullmatch(r"\d{1,2},\d{3}", number) else \
+        number.replace(",", ".")
+    units = [unit] if unit else ["mm", "m"]
+    return next((METRIC_SIDES[u][number] for u in units if number in METRIC_SIDES[u]), None)
+
+
+def metric_sizes(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A board's sides said in metric, read as the feet they stand for: with a unit ("600 mil" -> "2 ft", "1.2m" ->
+    "4ft"), or both sides of a size without one ("1200 x 2400" -> "4 x 8", "1.2 by 1.8" -> "4 by 6", "600 wide by
+    2400 long"). A lone number without a unit is left as said, and so is any other measure ("25 mm screws")."""
+    out = list(pieces)
+    low = [p.word.lower() for p in pieces]
+    read: dict[int, str] = {}
+    for k, word in enumerate(low):
+        attached, pair = _WITH_UNIT.match(word), _METRIC_PAIR.match(word)
+        unit = METRIC_UNITS.get(low[k + 1]) if k + 1 < len(low) else None
+        if attached and (feet := _feet(attached.group(1), attached.group(2).lower())):
+            read[k] = feet + "ft"
+        elif pair and (a := _feet(pair.group(1), pair.group(3))) and (b := _feet(pair.group(2), pair.group(3))):
+            read[k] = f"{a}x{b}"
+        elif unit and (feet := _feet(word, unit)):
+            read[k], read[k + 1] = feet, "ft"
+        elif (feet := _feet(word, None)) and k not in read:  # a side of a pair: "1200 x 2400", "600 wide by 2400"
+            j = k + 1 + (k + 1 < len(low) and low[k + 1] in _SIDE_WORDS)
+            if j + 1 < len(low) and low[j] in ("x", "by", "*") and (other := _feet(low[j + 1], None)) and \
+                    ("." in word) == ("." in low[j + 1]):
+                read[k], read[j + 1] = feet, other
+            elif k > 1 and low[k - 1] in ("x", "by", "*") and any(read.get(i, "ft") != "ft" for i in range(k - 4, k - 1)):
+                read[k] = feet  # the second side, after a first read with its unit: "2400 mm long by 1200 wide"
+    for k, word in sorted(read.items()):
+        changes.append(Change("metric", pieces[k].word, word))
+        out[k] = Piece(word, pieces[k].said, pieces[k].broken_off)
+    return out
+
+
 # --- disfluency ---------------------------------------------------------------------------------------------
 def resolve_false_starts(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A word broken off with a dash is a false start: said again ("the- the", "fo- four") it is dropped; followed by
@@ -416,7 +472,8 @@ def resolve_false_starts(pieces: list[Piece], changes: list[Change]) -> list[Pie
 
 
 #: The front end's steps, in order.
-STEPS: tuple[Step, ...] = (split_fields, expand_shorthand, drop_fillers, read_ids, resolve_false_starts, singular_sizes)
+STEPS: tuple[Step, ...] = (split_fields, expand_shorthand, drop_fillers, read_ids, resolve_false_starts, metric_sizes,
+                           singular_sizes)
 
 
 #: Written labels that only introduce the number after them ("stud no. 500104"); their full stop is what tells them

@@ -155,8 +155,8 @@ BEST_PATH = DecisionSettings(k=1, costs=DecisionCosts(wrong=0.0, refuse=1.0, ask
 #: corpus's validation split for the shipped tagger (``benchmarks/results/decision.md``; a test checks that they are
 #: the recorded ones).
 DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
-    log_probability=1.5206, undetermined=-1.3876, site_refusal=-3.262, refusal_below_best=-0.1476,
-    refusal_log_probability=1.2579, contradicted=1.0313, beyond_k_best=2.947),
+    log_probability=2.1816, undetermined=-2.1987, site_refusal=-2.8052, refusal_below_best=-0.1247,
+    refusal_log_probability=0.4821, contradicted=0.5249, beyond_k_best=4.1202),
     costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
 
 

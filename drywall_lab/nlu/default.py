@@ -1,7 +1,7 @@
 """The shipped default tagger: an ensemble of two BiLSTM-CRFs trained on the field corpus.
 
 It lives in ``drywall_lab/models/default_tagger/`` (package data; each member in its own ``member<N>/``) and is
-rebuilt, bit for bit, by ``make default-tagger``, which trains the recipe
+rebuilt, bit for bit on the same machine and torch build, by ``make default-tagger``, which trains the recipe
 (``drywall_lab.nlu.field_study.DEFAULT_FIELD_TAGGER``: character features, 8 epochs, batch 32, the weights
 averaged over the last 3 epochs) with each seed of ``DEFAULT_ENSEMBLE_SEEDS``, one thread on the CPU, combines
 the two with ``python -m drywall_lab ensemble`` (``CrfEnsembleTagger``: their CRF scores averaged) and then runs

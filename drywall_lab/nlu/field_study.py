@@ -45,8 +45,8 @@ DEFAULT_FIELD_TAGGER = {"corpus": "field", "char_features": True, "batch_size": 
 #: keeps the paper's test split at the issue's Acc_inst (99.4% or more) with the least decision cost on the generated
 #: validation and novel splits (``benchmarks/results/ensemble.md``, ``chosen=``; tested), never chosen on the field
 #: sets.
-DEFAULT_ENSEMBLE_SEEDS = (0, 2)
-#: The ablation trains each of its models once, with this seed (the shipped ensemble's second member's).
+DEFAULT_ENSEMBLE_SEEDS = (1, 2)
+#: The ablation trains each of its models once, with this seed (the shipped ensemble's first member's).
 STUDY_SEED = 1
 SHARED_FIELD = Path(__file__).resolve().parents[2].parent / "shared" / "field"
 EVALUATION = ("test", "novel", "field-test", "field-novel")

@@ -171,6 +171,8 @@ REGISTRY: tuple[Rule, ...] = (
          "where the words say the panel stands: consulted by placement_contradicted", "decision"),
     Rule("placement_contradicted", D, "placement_contradicted", _false, "returns False",
          "feature contradicted: a row placement that goes against an upright word", "decision"),
+    Rule("centre_unread", D, "centre_unread", _false, "returns False",
+         "feature centre_unread: the default placement although an untagged word says centre", "decision"),
     # step 5, in episodes only
     Rule("had_it_been_done", D, "had_it_been_done", _none, "returns None",
          "an instruction is read against the histories an unanswered question leaves, each as likely",

@@ -71,9 +71,9 @@ FEATURES = {
     "log_probability": "the tagger's natural-log probability of the reading",
     "undetermined": "the rules cannot make a command of the reading (a part missing)",
     "site_refusal": "the site refuses the reading's command (overlap, buried panel, unknown id, ...)",
-    "refusal_below_best": "a refusal from a reading that is not the tagger's best",
     "refusal_log_probability": "a refusal's log-probability again (a refusal's probability weighs otherwise)",
     "contradicted": "the reading puts the panel in a row although a word says it stands",
+    "centre_unread": "the reading leaves the placement to the default although a word it leaves untagged says centre",
     "beyond_k_best": "'none of these': the log of the probability the k best readings leave over",
 }
 
@@ -155,8 +155,8 @@ BEST_PATH = DecisionSettings(k=1, costs=DecisionCosts(wrong=0.0, refuse=1.0, ask
 #: corpus's validation split for the shipped tagger (``benchmarks/results/decision.md``; a test checks that they are
 #: the recorded ones).
 DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
-    log_probability=2.1816, undetermined=-2.1987, site_refusal=-2.8052, refusal_below_best=-0.1247,
-    refusal_log_probability=0.4821, contradicted=0.5249, beyond_k_best=4.1202),
+    log_probability=1.5567, undetermined=-2.2052, site_refusal=-2.8081, refusal_log_probability=0.5023,
+    contradicted=0.525, centre_unread=-2.058, beyond_k_best=4.1203),
     costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
 
 
@@ -349,6 +349,19 @@ def placement_contradicted(words: Sequence[str], tags: Sequence[str]) -> bool:
     return bool({"Hr_top", "Hr_btm"}.intersection(tags)) and bool(W.upright_words(words))
 
 
+#: Words that say the centre line when no placement tag reads them ("centred on the upright", "in the middle of the
+#: stud"); a stack or a stud named by its middle carries its own tag.
+CENTRE_WORDS = W.MIDDLE_WORDS | {"centred", "centered", "centreline", "centerline"}
+
+
+def centre_unread(words: Sequence[str], tags: Sequence[str]) -> bool:
+    """Whether a reading takes the default placement (no placement tag) although a word it leaves untagged says the
+    centre line: the sibling of ``placement_contradicted`` for a placement word the tagger did not read."""
+    if {"Vr_md", "Hr_top", "Hr_btm"}.intersection(tags):
+        return False
+    return any(tag in W.UNTAGGED and W.normalise(w) in CENTRE_WORDS for w, tag in zip(words, tags))
+
+
 # --- step 1: the candidates and their features ---------------------------------------------------------------
 _INDEX = {name: i for i, name in enumerate(FEATURES)}
 
@@ -361,20 +374,18 @@ def _features(**values: float) -> np.ndarray:
 
 
 def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHistory,
-                       assumes: "Decision | None" = None, actual: ActionHistory | None = None,
-                       best: bool = True) -> list[Candidate]:
+                       assumes: "Decision | None" = None, actual: ActionHistory | None = None) -> list[Candidate]:
     """The candidates of one reading read against ``history``: its own outcome, and the other meaning when its words
     name two panels or studs. ``actual``: the history as it stands, when ``history`` assumes an unanswered question's
-    command done (``assumes``); a command the site would not allow as things stand then counts as a refusal.
-    ``best``: whether the reading is the tagger's best."""
+    command done (``assumes``); a command the site would not allow as things stand then counts as a refusal."""
     outcome = reading.outcome
     tags = reading.read_tags
     base = dict(log_probability=reading.logprob,
-                contradicted=float(outcome[0] == "command" and placement_contradicted(words, tags)))
+                contradicted=float(outcome[0] == "command" and placement_contradicted(words, tags)),
+                centre_unread=float(outcome[0] == "command" and centre_unread(words, tags)))
     if outcome[0] == "refusal":
         kind = "undetermined" if outcome[1] == "undetermined" else "site_refusal"
-        return [Candidate(outcome, _features(**base, **{kind: 1.0}, refusal_below_best=float(not best),
-                                             refusal_log_probability=reading.logprob), reading, assumes)]
+        return [Candidate(outcome, _features(**base, **{kind: 1.0}, refusal_log_probability=reading.logprob), reading, assumes)]
     if actual is not None and not _feasible(actual, outcome):
         return [Candidate(("refusal", "unclear"), _features(**base, site_refusal=1.0), reading, assumes)]
     two = two_meanings(outcome, words, tags, history)
@@ -392,7 +403,7 @@ def candidates(words: Sequence[str], readings: Sequence[Reading], history: Actio
     """Step 1 of the module docstring: every reading's candidates against ``history``, and again against each
     history an unanswered question leaves open (``unanswered``: (decision, the commands it asked about or may have
     meant, how many commands ``history`` held when it asked) triples), and "none of these"."""
-    out = [c for n, r in enumerate(readings) for c in reading_candidates(words, r, history, best=n == 0)]
+    out = [c for r in readings for c in reading_candidates(words, r, history)]
     for entry in unanswered:
         asked, options = entry[0], entry[1]
         asked_at = entry[2] if len(entry) > 2 else len(history)
@@ -402,9 +413,9 @@ def candidates(words: Sequence[str], readings: Sequence[Reading], history: Actio
             other = had_it_been_done(history, asked_at, option)
             if other is None:
                 continue  # no longer possible on the site: nothing the worker now builds on
-            for n, r in enumerate(readings):
+            for r in readings:
                 assumed = Reading(r.tags, r.logprob, interpreter(list(words), r.tags, other))
-                out += reading_candidates(words, assumed, other, asked, history, n == 0)
+                out += reading_candidates(words, assumed, other, asked, history)
     left = 1.0 - sum(r.probability for r in readings)
     if left > 1e-9:
         out.append(Candidate(NONE_OF_THESE, _features(beyond_k_best=math.log(left)), None))

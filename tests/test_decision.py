@@ -13,10 +13,10 @@ import pytest
 from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, FEATURES, DecisionCosts, DecisionSettings, _weights,
-                                  completions, conformal_floor, decide, decide_episode, decide_rows, decide_tags,
-                                  decision_scores, expected_costs, fit_weights, outcome_of, placement_contradicted,
-                                  play_episode, question_between, step_outcome,
-                                  truth_mask, tune_weights, two_meanings)
+                                  centre_unread, completions, conformal_floor, decide, decide_episode, decide_rows,
+                                  decide_tags, decision_scores, expected_costs, fit_weights, outcome_of,
+                                  placement_contradicted, play_episode, question_between, step_outcome, truth_mask,
+                                  tune_weights, two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
 from drywall_lab.splits import ALL_SPLITS, split_rows
@@ -445,6 +445,19 @@ def test_a_placement_that_goes_against_the_words_is_weighed_by_its_feature():
     assert d.action == "recover" and d.command.placement.value == "vertical_left"
 
 
+def test_a_centre_word_left_unread_is_weighed_by_its_feature():
+    """"centred on the upright" with no placement tag read: the default placement although an untagged word says
+    centre (``centre_unread``). Weighed down, the reading that reads the centre line carries it; a stack or a stud
+    named by its middle carries its own tag and does not count."""
+    words, read = _wt("put the 2x8/width on 500104/ID_stud centred/Vr_md on the upright")
+    unread = ["O" if t == "Vr_md" else t for t in read]
+    assert centre_unread(words, unread) and not centre_unread(words, read)
+    assert not centre_unread(*_wt("one from the middle/Dw_loc1 pile on 500104/ID_stud"))
+    kbest = [(unread, math.log(0.6)), (read, math.log(0.4))]
+    d = decide(words, kbest, _sure(unread), TAGS, settings=replace(PLAIN, weights=_weights(centre_unread=-6.0)))
+    assert d.action == "recover" and d.command.placement.value == "vertical_middle"
+
+
 def test_expected_costs_follow_the_formula():
     a, b, c = (("command", "500320", s, "vertical_left") for s in ("500100", "500104", "500108"))
     costs, best, options = expected_costs({a: 0.5, b: 0.3, c: 0.1, ("refusal", "overlap"): 0.1},
@@ -498,3 +511,12 @@ def test_truth_mask_counts_any_refusal_and_falls_back_to_none_of_these():
     assert truth_mask(d.candidates, {"refusal": "overlap"}).tolist() == [False, True]  # "none of these" is a refusal
     other = {**meant, "stud_id": "500111", "refusal": None}
     assert truth_mask(d.candidates, other).tolist() == [False, True]
+
+
+def test_the_readme_table_of_features_is_the_default_settings():
+    """README.md's table of features says each feature of FEATURES with its words and its fitted weight."""
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    for name, weight in DEFAULT_SETTINGS.weights:
+        assert f"| `{name}` | {FEATURES[name]} | {weight:+.2f} |" in readme, name

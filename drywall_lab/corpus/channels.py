@@ -537,7 +537,8 @@ def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
 
 
 CHANNELS: dict[str, Channel] = {
-    "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk, "spoken_ids": spoken_ids, "shorthand": shorthand,
+    "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk,
+    "spoken_ids": spoken_ids, "shorthand": shorthand,
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
 }
 #: How often each channel is applied to a training instruction (independently of each other and of the register).

@@ -160,8 +160,8 @@ def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 
 #: A lower-case "l" or "r" is a side where a side is due: after these words (a texted "from" too: "2nd frm r") or before
 #: these ("2nd from r", "to the l of", "l line"); elsewhere a lower-case "r" is a texted "are".
-_BEFORE_SIDE = frozenset({"the", "from", "frm", "fr", "to", "far", "furthest", "of", "on", "studs", "places", "stacks", "piles",
-                          "over", "further", "just"})
+_BEFORE_SIDE = frozenset({"the", "from", "frm", "fr", "to", "far", "furthest", "of", "on", "studs", "places", "stacks",
+                          "piles", "over", "further", "just"})
 _AFTER_SIDE = frozenset({"of", "from", "line", "edge", "side", "end", "pile", "stack"})
 _SIDES = {"l": "left", "r": "right"}
 _ANCHOR_NOUNS = frozenset({"stud", "post", "upright", "pile", "stack", "panel", "sheet"})

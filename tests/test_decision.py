@@ -306,6 +306,38 @@ def test_an_unanswered_question_stays_open_after_an_unrelated_action():
     assert [d.action for d in closed] == ["act", "ask", "act", "act"]
 
 
+
+def test_only_the_latest_open_questions_are_read_against(monkeypatch):
+    """``open_questions``: an instruction is read against the histories of the latest open questions only, so a long
+    run of questions does not make each step slower than the last; with none kept, it is read as things stand."""
+    from dataclasses import replace
+
+    from drywall_lab import decision
+
+    first, first_tags = _wt("Put panel 500320/ID_wall on stud 500100/ID_stud")
+    unsure, unsure_tags = _wt(CENTRE)
+    left = ["O" if t == "Vr_md" else t for t in unsure_tags]
+    read_against = []
+    decide_as_shipped = decision.decide
+
+    def counting(*args, **kwargs):
+        read_against.append(len(args[7]))
+        return decide_as_shipped(*args, **kwargs)
+
+    monkeypatch.setattr(decision, "decide", counting)
+    steps, readings = [first] + [unsure] * 7, [_Gold(first_tags)] + [_unsure(unsure, unsure_tags, left)] * 7
+    decisions = play_episode(steps, readings, TAGS, ActionHistory(), replace(PLAIN, open_questions=1))
+    assert [d.action for d in decisions[:3]] == ["act", "ask", "ask"] and not any(d.acted for d in decisions[1:])
+    assert max(read_against) == 1
+    read_against.clear()
+    play_episode(steps, readings, TAGS, ActionHistory(), replace(PLAIN, open_questions=100))
+    assert max(read_against) > 1  # without the bound, the questions pile up
+    read_against.clear()
+    play_episode(steps, readings, TAGS, ActionHistory(), replace(PLAIN, open_questions=0))
+    assert read_against == [0] * 8
+    with pytest.raises(ValueError, match="open_questions"):
+        replace(PLAIN, open_questions=-1)
+
 def test_scores():
     command = {"drywall_id": "500320", "stud_id": "500100", "placement": "vertical_left", "refusal": None}
     refusal = {"drywall_id": None, "stud_id": None, "placement": None, "refusal": "overlap"}

@@ -54,7 +54,10 @@ EVALUATION = ("test", "novel", "field-test", "field-novel")
 
 @dataclass
 class FieldStudySettings:
-    """What to train: ``fast()`` is a quick check (small data, one or two epochs), ``full()`` the study."""
+    """What to train: ``fast()`` is a quick check (small data, one or two epochs), ``full()`` the study.
+
+    ``evaluation_size``: the rows of each generated split and the episodes of each hand-written set scored (their
+    first ones; None: all of them)."""
 
     lstm_epochs: dict[str, int] = field(default_factory=lambda: {"paper": 20, "field": 8})
     bert_epochs: dict[str, int] = field(default_factory=lambda: {"paper": 10, "field": 2})
@@ -124,8 +127,11 @@ def score_tagger(tagger: Tagger, settings: FieldStudySettings) -> dict:
         sets["shared/field"] = (SHARED_FIELD, False)
     for name, (directory, tagged) in sets.items():
         field_set = read_field_set(directory, tagged=tagged) if directory else read_field_set()
+        episodes = field_set.episodes[:settings.evaluation_size]
+        kept = {str(e["id"]) for e in episodes}
+        gold = [g for g in field_set.gold if str(g["episode"]) in kept]
         for mode, decision in (("best", BEST_PATH), ("decided", DEFAULT_SETTINGS)):
-            scores = score_run(run_episodes(field_set.episodes, tagger, settings=decision), field_set).loc["ALL"]
+            scores = score_run(run_episodes(episodes, tagger, settings=decision), gold).loc["ALL"]
             row[f"{name} {mode}"] = scores["accuracy"]
             row[f"{name} {mode} wrong"] = scores["wrong_action_rate"]
     return row

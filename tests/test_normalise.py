@@ -66,6 +66,31 @@ def test_metric_sides_are_read_as_the_feet_they_stand_for(said, read):
 
 
 @pytest.mark.parametrize("said, read", [
+    ("a twelve hundred by twenty four hundred sheet", "a 4 by 8 sheet"),
+    ("the twelve hundred by twenty-four hundred", "the 4 by 8"),
+    ("six hundred mil wide", "2 ft wide"),
+    ("one point two by one point eight metres", "4 by 6 ft"),
+    ("the one point two two by two point four four", "the 4 by 8"),
+    ("point six by two point four", "2 by 8"),
+    ("twelve hundred", "twelve hundred"),  # a lone number, said in words
+    ("one point two", "one point two"),
+    ("two point five by eight", "two point five by eight"),  # no board's side
+    ("stud five hundred one twelve", "stud 500112"),  # an id, not a side
+    ("the one point on the left", "the one point on the left"),
+])
+def test_metric_sides_said_in_words_are_read_too(said, read):
+    assert N.normalise_text(said) == read
+
+
+def test_a_side_said_in_words_keeps_the_workers_words_for_its_tag():
+    n = N.normalise("put the twelve hundred by twenty four hundred sheet on 500104")
+    assert n.words == ("put", "the", "4", "by", "8", "sheet", "on", "500104")
+    assert [str(c) for c in n.changes] == ["metric: 'twelve hundred' -> '4'", "metric: 'twenty four hundred' -> '8'"]
+    assert n.tags_of_said(["O", "O", "width", "O", "length", "O", "O", "ID_stud"]) == \
+        ["O", "O", "width", "width", "O", "length", "length", "length", "O", "O", "ID_stud"]
+
+
+@pytest.mark.parametrize("said, read", [
     ("PNL: 2x8 | STUD: 500106 | BTM", "panel 2x8 | STUD 500106 | bottom"),
     ("Stud:500104 -> vert w/ CL", "Stud 500104 -> vertical with centre line"),
     ("2nd from R", "2nd from right"),

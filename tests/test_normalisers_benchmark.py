@@ -30,7 +30,7 @@ def test_the_table_parses_and_covers_every_class(script) -> None:
     forms = script.read_forms()
     assert len(forms) >= 80
     assert set(script.classes_of(forms)) == {"id_digits", "id_grouped", "id_typed", "cardinal", "ordinal", "size",
-                                            "keep"}
+                                            "metric", "keep"}
     assert len({f.spoken for f in forms}) == len(forms), "a form is listed twice"
     for form in forms:
         if form.cls.startswith("id_"):
@@ -89,7 +89,7 @@ def test_quick_runs_and_reports_a_missing_library(script, tmp_path, monkeypatch,
     assert "numerizer: not installed in this environment" in capsys.readouterr().out
     assert "| numerizer | not installed in this environment" in text
     assert "## Choice" in text and "## Machine" in text and "- logical cores:" in text
-    assert re.search(r"^\| identity \| [\d.]+% \(\d+/14\) \|", text, re.M)
+    assert re.search(r"^\| identity \| [\d.]+% \(\d+/16\) \|", text, re.M)  # two forms of each of 8 classes
 
 
 def test_acceptable_outputs_are_any_of_the_alternatives(script) -> None:

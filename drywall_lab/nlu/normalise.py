@@ -2,13 +2,13 @@
 
 People say and type the same instruction in many surface forms: an id read out digit by digit ("five oh oh one oh
 eight", "five double-oh one one two", "five hundred one-oh-eight") or split ("500 104", "500-104"), a size in the
-plural ("one of the 2x8s"), a board's sides in metric ("1200 x 2400", "600 mm wide": the feet they stand for), the
-site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields separated by ``|`` or ``->``), and spoken
-disfluency (fillers, stutters, a false start broken off with a dash and repaired: "the four by- no, the two by
-eight"). The paper's tagger (Sec. 3.1) learns surface forms from its corpus; a form it never met is a guess. This
-module reads every such form into one written form first, for training and prediction alike
-(``drywall_lab.corpus.field_generator`` writes its rows through it), so that a new voice reaches the tagger in
-words it knows.
+plural ("one of the 2x8s"), a board's sides in metric ("1200 x 2400", "600 mm wide", "twelve hundred by twenty-four
+hundred": the feet they stand for), the site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields
+separated by ``|`` or ``->``), and spoken disfluency (fillers, stutters, a false start broken off with a dash and
+repaired: "the four by- no, the two by eight"). The paper's tagger (Sec. 3.1) learns surface forms from its
+corpus; a form it never met is a guess. This module reads every such form into one written form first, for training
+and prediction alike (``drywall_lab.corpus.field_generator`` writes its rows through it), so that a new voice
+reaches the tagger in words it knows.
 
 It is a small grammar of the project's own, not a general inverse text normaliser: the comparison on a table of
 site forms (``benchmarks/normalisers.py``, ``benchmarks/results/normalisers.md``) found that the general
@@ -407,10 +407,64 @@ def _feet(number: str, unit: str | None) -> str | None:
     return next((METRIC_SIDES[u][number] for u in units if number in METRIC_SIDES[u]), None)
 
 
+#: Spoken hundreds of millimetres ("twelve hundred") and spoken metres ("one point two"): the words of a side.
+_HUNDREDS = {**{w: d for w, d in DIGIT_WORDS.items() if w not in ("oh", "o", "nought", "zero")}, **TEEN_WORDS}
+_POINT_LEAD = {"zero": "0", "nought": "0", "oh": "0", "one": "1", "two": "2"}
+
+
+def _spoken_side(low: Sequence[str], k: int) -> tuple[str, int] | None:
+    """The metric side said in words from ``low[k]`` on, in digits, and how many words it takes: "twelve hundred"
+    -> ("1200", 2), "twenty four hundred" / "twenty-four hundred" -> "2400", "one point two" -> "1.2", "point six" ->
+    "0.6". None when the words there say no side of a board (``METRIC_SIDES``)."""
+    word = low[k]
+    if word in _POINT_LEAD or word == "point":  # "one point two (two)", "point six": metres
+        lead, at = ("0", k) if word == "point" else (_POINT_LEAD[word], k + 1)
+        if at + 1 < len(low) and low[at] == "point" and low[at + 1] in DIGIT_WORDS:
+            decimals = DIGIT_WORDS[low[at + 1]]
+            if at + 2 < len(low) and low[at + 2] in DIGIT_WORDS:
+                decimals += DIGIT_WORDS[low[at + 2]]
+            for digits in (decimals, decimals[:1]):  # "one point two two" (1.22), else "one point two"
+                if f"{lead}.{digits}" in METRIC_SIDES["m"]:
+                    return f"{lead}.{digits}", at + 1 + len(digits) - k
+    tens = word.split("-")
+    if len(tens) == 2 and tens[0] in TENS_WORDS and tens[1] in DIGIT_WORDS:  # "twenty-four"
+        number, used = TENS_WORDS[tens[0]] + DIGIT_WORDS[tens[1]], 1
+    elif word in TENS_WORDS and k + 1 < len(low) and low[k + 1] in _HUNDREDS and low[k + 1] not in TEEN_WORDS:
+        number, used = TENS_WORDS[word] + DIGIT_WORDS[low[k + 1]], 2  # "twenty four"
+    elif word in _HUNDREDS:
+        number, used = _HUNDREDS[word], 1
+    else:
+        return None
+    if k + used < len(low) and low[k + used] == "hundred" and number + "00" in METRIC_SIDES["mm"]:
+        return number + "00", used + 1
+    return None
+
+
+def _spoken_sides(pieces: list[Piece]) -> tuple[list[Piece], dict[int, list[Piece]]]:
+    """``pieces`` with each metric side said in words as one piece in digits, and the pieces each one stands for."""
+    low = [p.word.lower() for p in pieces]
+    out: list[Piece] = []
+    spoken: dict[int, list[Piece]] = {}
+    k = 0
+    while k < len(pieces):
+        side = _spoken_side(low, k)
+        if side is None:
+            out.append(pieces[k])
+            k += 1
+            continue
+        digits, used = side
+        spoken[len(out)] = pieces[k:k + used]
+        out.append(Piece(digits, tuple(i for p in pieces[k:k + used] for i in p.said), pieces[k + used - 1].broken_off))
+        k += used
+    return out, spoken
+
+
 def metric_sizes(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A board's sides said in metric, read as the feet they stand for: with a unit ("600 mil" -> "2 ft", "1.2m" ->
     "4ft"), or both sides of a size without one ("1200 x 2400" -> "4 x 8", "1.2 by 1.8" -> "4 by 6", "600 wide by
-    2400 long"). A lone number without a unit is left as said, and so is any other measure ("25 mm screws")."""
+    2400 long"), in digits or in words ("twelve hundred by twenty-four hundred", "one point two metres"). A lone
+    number without a unit is left as said, and so is any other measure ("25 mm screws")."""
+    pieces, spoken = _spoken_sides(pieces)
     out = list(pieces)
     low = [p.word.lower() for p in pieces]
     read: dict[int, str] = {}
@@ -431,9 +485,10 @@ def metric_sizes(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
             elif k > 1 and low[k - 1] in ("x", "by", "*") and any(read.get(i, "ft") != "ft" for i in range(k - 4, k - 1)):
                 read[k] = feet  # the second side, after a first read with its unit: "2400 mm long by 1200 wide"
     for k, word in sorted(read.items()):
-        changes.append(Change("metric", pieces[k].word, word))
+        said = " ".join(p.word for p in spoken[k]) if k in spoken else pieces[k].word
+        changes.append(Change("metric", said, word))
         out[k] = Piece(word, pieces[k].said, pieces[k].broken_off)
-    return out
+    return [q for k, piece in enumerate(out) for q in (spoken[k] if k in spoken and k not in read else [piece])]
 
 
 # --- disfluency ---------------------------------------------------------------------------------------------

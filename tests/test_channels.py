@@ -40,7 +40,24 @@ def test_a_channel_keeps_every_tag_on_a_word_that_says_it():
         for _ in range(20):
             out = channel(ch, [list(sentence)])
             tags = {t.tag for s in out for t in s if t.is_word}
-            assert {"width", "ID_stud", "Vr_md"} <= tags, name
+            stud = "St_loc1" if name == "restated_studs" else "ID_stud"  # the stud said by its position, twice
+            assert {"width", stud, "Vr_md"} <= tags, name
+
+
+def test_restated_studs_name_one_stud_twice_by_position_and_the_im_reads_it():
+    """``restated_studs``: "on stud 500100" becomes "on the first stud, the leftmost one" (two position phrases,
+    both ``St_loc1``), and the IM reads each phrase on its own: the same stud as the id, for every stud."""
+    from drywall_lab.im import ActionHistory, interpret
+
+    rng = Chooser(random.Random(4))
+    for stud in range(500100, 500111):
+        sentence = _sentence(f"put the 2x8/width on stud {stud}/ID_stud please")
+        for _ in range(12):
+            out = C.restated_studs(rng, [list(sentence)])
+            words = [t.word for s in out for t in s if t.is_word]
+            tags = [t.tag for s in out for t in s if t.is_word]
+            assert "ID_stud" not in tags and tags.count("St_loc1") >= 2
+            assert interpret(words, tags, history=ActionHistory()).outcome()["stud_id"] == str(stud), words
 
 
 def test_spoken_ids_say_the_same_id():

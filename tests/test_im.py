@@ -394,6 +394,23 @@ def test_a_position_and_an_id_that_disagree_name_both_studs():
                                   "which one should I use?")
 
 
+@pytest.mark.parametrize("markup, stud", [
+    ("the very/St_loc1 first/St_loc1 stud , the leftmost/St_loc1 one", "500100"),
+    ("the middle/St_loc1 stud , that's the seventh/St_loc1 from/St_loc1 the/St_loc1 right/St_loc1", "500106"),
+    ("the 4th/St_loc1 stud from/St_loc1 the/St_loc1 right/St_loc1 - the tenth/St_loc1 one", "500109"),
+    ("the first/St_loc1 stud , the third/St_loc1 one", None),  # two studs: the question of the words read together
+    ("the third/St_loc1 stud , left/St_loc1", None),
+])
+def test_a_stud_named_twice_by_its_position_is_read_phrase_by_phrase(markup, stud):
+    """A stud said twice by position (``stud.position_groups``): each phrase alone must name the same stud."""
+    if stud is None:
+        with pytest.raises(Refusal) as info:
+            resolve_stud(tagged(markup), context())
+        assert info.value.reason == "undetermined"
+    else:
+        assert resolve_stud(tagged(markup), context()) == stud
+
+
 @pytest.mark.parametrize("markup, history, reason", STUD_REFUSALS)
 def test_stud_refusals(markup, history, reason):
     with pytest.raises(Refusal) as info:

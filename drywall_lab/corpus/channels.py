@@ -11,6 +11,8 @@ keeping the meaning and carrying every word's tag along:
   ("the four by- no, the 2x8"), a trailing confirmation ("yeah, that one");
 - ``asides``: a reason or remark around the instruction that names sizes, rows, counts and positions of other
   things ("the top of that pile is chipped", "the 4x8s are heavy") and so must all be ``O``;
+- ``restated_studs``: a stud named by where it is and then said again another way ("on the first stud, the
+  leftmost one", "the fourth from the right - the tenth stud");
 - ``plural_sizes``: a panel named as one of its size ("one of the 2x8s");
 - ``metric_sizes``: a panel's sides in millimetres, centimetres or metres ("1200 x 2400", "a 600 mm wide one");
 - ``site_references``: the panel or its stack named first and pointed back at inside the instruction ("the middle
@@ -29,7 +31,8 @@ import re
 from typing import Callable
 
 from drywall_lab.corpus.markup import Phrase, Token
-from drywall_lab.corpus.phrases import Chooser
+from drywall_lab.corpus.phrases import ORDINAL_WORDS, Chooser
+from drywall_lab.site import default_site
 
 Sentences = list[Phrase]
 Channel = Callable[[Chooser, Sentences], Sentences]
@@ -519,6 +522,62 @@ def site_references(ch: Chooser, sentences: Sentences) -> Sentences:
     return sentences[:k] + [first + [Token(",", None, None)] + rest] + sentences[k + 1:]
 
 
+# --- a stud said twice ---------------------------------------------------------------------------------------
+#: What joins a stud's position to the same position said again ("the first stud , the leftmost one"): all O.
+RESTATE_LEADS = ((",",), (",", "yeah", ","), (",", "so"), (",", "that's"), ("-",), (",", "which", "is"), (".",))
+
+
+def _stud_positions(ch: Chooser, index: int, studs: int) -> list[Phrase]:
+    """The ways to name the stud at ``index`` (0 = the left end) by where it is, each ``St_loc1`` on its position
+    words (guidelines: ``the fifth/St_loc1 stud``, ``fourth/St_loc1 from/St_loc1 the/St_loc1 right/St_loc1``)."""
+    def pos(*words: str, tagged_from: int = 0, noun: str = "") -> Phrase:
+        lead = _plain(*words[:tagged_from])
+        said = [Token(w, "St_loc1", "St_loc1") for w in words[tagged_from:]]
+        return lead + said + (_plain(noun) if noun else [])
+    def from_end(n: int, side: str) -> Phrase:
+        said = pos("the", ch.ordinal(n), "from", "the", side, tagged_from=1)
+        return said if ch.chance(0.5) else said[:2] + _plain("stud") + said[2:]  # "the fourth stud from the right"
+    noun = ch.rng.choice(("stud", "one", "stud"))
+    forms: list[Phrase] = []
+    if index + 1 in ORDINAL_WORDS:
+        forms += [pos("the", ch.ordinal(index + 1), tagged_from=1, noun=noun), from_end(index + 1, "left")]
+    if studs - index in ORDINAL_WORDS:
+        forms += [from_end(studs - index, "right"), from_end(studs - index, "right")]
+    if index == 0:
+        forms += [pos("the", "leftmost", tagged_from=1, noun=noun), pos("the", "far", "left", tagged_from=1, noun=noun),
+                  pos("the", "very", "first", tagged_from=1, noun=noun)]
+    if index == studs - 1:
+        forms += [pos("the", "rightmost", tagged_from=1, noun=noun), pos("the", "far", "right", tagged_from=1, noun=noun)]
+    if index == studs // 2:
+        forms += [pos("the", "middle", tagged_from=1, noun=noun), pos("the", "centre", tagged_from=1, noun=noun)]
+    return forms
+
+
+def restated_studs(ch: Chooser, sentences: Sentences) -> Sentences:
+    """A stud named by where it is, then said again another way: "on stud 500100" -> "on the first stud, the
+    leftmost one", "on stud 500106" -> "on the seventh from the right - the middle one". Both positions carry ``St_loc1`` (guidelines:
+    a stud named twice, tag both); they name the same stud, which the IM checks (``im.stud.stud_by_position``)."""
+    studs = len(default_site().studs)
+    out: Sentences = []
+    done = False
+    for sentence in sentences:
+        new: Phrase = []
+        for tok in sentence:
+            index = int(tok.word) - 500100 if tok.is_word and tok.tag == "ID_stud" and _is_id(tok) else -1
+            if done or not 0 <= index < studs:
+                new.append(tok)
+                continue
+            forms = _stud_positions(ch, index, studs)
+            first, again = ch.rng.sample(forms, 2) if len(forms) > 1 else (forms[0], forms[0])
+            if new and new[-1].is_word and new[-1].tag == "O" and new[-1].word.lower() in ("stud", "post"):
+                new.pop()  # "on stud 500104" -> "on the fifth stud , ..."
+            lead = [Token(w, None, None) if w in (",", ".") else Token(w) for w in ch.rng.choice(RESTATE_LEADS)]
+            new += first + lead + again
+            done = True
+        out.append(new)
+    return out
+
+
 # --- plural sizes ---------------------------------------------------------------------------------------------
 def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
     """A size said in one word after an article is one of that size: "the 2x8" -> "one of the 2x8s"."""
@@ -537,14 +596,14 @@ def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
 
 
 CHANNELS: dict[str, Channel] = {
-    "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk,
+    "restated_studs": restated_studs, "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk,
     "spoken_ids": spoken_ids, "shorthand": shorthand,
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
 }
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
 CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, "relative_talk": 0.35,
                                    "spoken_ids": 0.15, "shorthand": 0.12, "disfluency": 0.15, "asides": 0.15,
-                                   "plural_sizes": 0.10}
+                                   "plural_sizes": 0.10, "restated_studs": 0.06}
 #: Held back whole: never in train, validation or test; the novel split uses it.
 HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: Held back as a pair: each channel is met alone in training, never both at once.

@@ -418,7 +418,8 @@ PLACEMENT = {
         # the default named as the robot names it (spec section 4, and the robot's own questions): still all O
         "on the left line", "on its left line", "left line", "on the left line of the {stud}", "edge on the left line",
         "left edge on the left line", "default , left line", "the default", "default", "on the stud's left line",
-        "lined up on the left line", "the normal left line",
+        "lined up on the left line", "the normal left line", "on the left side of the {stud}",
+        "left side of the {stud}",
     ],
     "vertical_middle": [
         "on the centre/Vr_md line/Vr_md", "on the center/Vr_md line/Vr_md", "on/Vr_md centre/Vr_md", "on/Vr_md center/Vr_md",
@@ -519,10 +520,13 @@ DEFAULT_FIRST = ["standing up this time", "vertical", "upright for this one", "n
 #: A placement wrapped round the stud ({d} is the stud phrase): "with its edge on the centre line of stud 500105".
 PLACEMENT_OF_STUD = {
     "vertical_left": ["on {d}", "with its edge on the left side of {d}", "lined up with the left side of {d}",
-                      "on {d} , standing up", "on {d} the normal way"],
+                      "on {d} , standing up", "on {d} the normal way", "on the left side of {d}", "left side of {d}",
+                      "to the left edge of {d}"],
     "vertical_middle": ["with its edge on the centre/Vr_md line/Vr_md of {d}", "on the centreline/Vr_md of {d}",
                         "centred/Vr_md on {d}", "half/Vr_md on {d}", "edge on the centre/Vr_md line/Vr_md of {d}",
-                        "on the middle/Vr_md line/Vr_md of {d}", "centered/Vr_md over {d}", "splitting/Vr_md {d}"],
+                        "on the middle/Vr_md line/Vr_md of {d}", "centered/Vr_md over {d}", "splitting/Vr_md {d}",
+                        "centre/Vr_md of {d}", "on the centre/Vr_md of {d}", "in the middle/Vr_md of {d}",
+                        "the middle/Vr_md of {d}", "at the center/Vr_md of {d}"],
     "horizontal_top": ["in the top/Hr_top row/Hr_top starting at {d}", "up top/Hr_top from {d}",
                        "across the top/Hr_top starting from {d}", "in the top/Hr_top course/Hr_top at {d}",
                        "flat along the top/Hr_top from {d} on"],

@@ -12,7 +12,8 @@ Three rules, tried in order:
    ordinal with a side but no "from" ("the third stud left": from the left end, or
    to the left of another stud?), a step with no anchor tagged ("three to the
    left", "just to the right"), a count with the middle or with "last"
-   (``words.line_position``).
+   (``words.line_position``). A stud named twice by its position, in two phrases ("the very first stud, the
+   leftmost one"), is read phrase by phrase: both must name the same stud.
 3. ``St_loc1`` + ``St_loc2``: ``St_loc1`` is a direction with an optional count
    (default 1; "zero", "0" and "same" are 0: the anchor itself), ``St_loc2`` the
    anchor: a stud id, the leftmost or rightmost stud, or the previous stud (the stud
@@ -72,13 +73,57 @@ def stud_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | N
         quoted = W.quote(ti.phrase("St_loc1"))  # "the same stud", "where the last one went": the previous stud
         stud = ctx.site.stud(ctx.require_last(quoted)["stud_id"])
         return Decision(stud.stud_id, f"{quoted}: the stud of the last accepted command -> stud {stud.stud_id}")
-    position = W.line_position(said, W.quote(ti.span("St_loc1")), len(ctx.site.studs), "stud")
+    try:
+        position = W.line_position(said, W.quote(ti.span("St_loc1")), len(ctx.site.studs), "stud")
+    except Refusal as refusal:
+        position = _said_twice(ti, len(ctx.site.studs), refusal)
     if position is None:
         return None
     index, how = position
     quoted = W.quote(ti.phrase("St_loc1"))
     stud = _stud_at(ctx, index, quoted)
     return Decision(stud.stud_id, f"{quoted}: {how} -> stud {stud.stud_id}")
+
+
+#: Words that may stand inside one position ("third stud from the left") without starting another.
+_STUD_NOUNS = frozenset({"stud", "studs", "post", "posts"})
+#: Words around a bare side ("on the left"): a phrase of only these and a side is no position on its own.
+_SIDE_ONLY = frozenset({"on", "the", "to", "at", "left", "right"})
+
+
+def position_groups(ti: TaggedInstruction) -> list[list[str]]:
+    """The ``St_loc1`` words in separate phrases: a new phrase starts where any word but a stud noun comes
+    between two of them ("the first stud, the leftmost one" -> ["first"], ["leftmost"])."""
+    idx = ti.indices("St_loc1")
+    groups: list[list[int]] = [idx[:1]]
+    for a, b in zip(idx, idx[1:]):
+        if all(w.lower() in _STUD_NOUNS for w in ti.words[a + 1:b]):
+            groups[-1].append(b)
+        else:
+            groups.append([b])
+    return [[ti.words[i] for i in g] for g in groups if g]
+
+
+def _said_twice(ti: TaggedInstruction, studs: int, refusal: Refusal) -> tuple[int, str]:
+    """One stud named twice by its position ("the very first stud, the leftmost one"): each phrase read on its
+    own must name the same stud; otherwise the refusal the words read together gave stands."""
+    groups = position_groups(ti)
+    if len(groups) < 2:
+        raise refusal
+    read = []
+    for group in groups:
+        if {w.lower() for w in group} <= _SIDE_ONLY:  # "the first stud on the left": the ordinal-and-side question
+            raise refusal
+        try:
+            position = W.line_position(group, W.quote(group), studs, "stud")
+        except Refusal:
+            raise refusal from None
+        if position is None:
+            raise refusal
+        read.append(position)
+    if len({index for index, _ in read}) != 1:
+        raise refusal
+    return read[0][0], " and ".join(how for _, how in read) + " (said twice, the same stud)"
 
 
 # --- rule 3 ---------------------------------------------------------------------------

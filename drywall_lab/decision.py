@@ -161,8 +161,8 @@ BEST_PATH = DecisionSettings(k=1, costs=DecisionCosts(wrong=0.0, refuse=1.0, ask
 #: corpus's validation split for the shipped tagger (``benchmarks/results/decision.md``; a test checks that they are
 #: the recorded ones).
 DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
-    log_probability=1.5567, undetermined=-2.2052, site_refusal=-2.8081, refusal_log_probability=0.5023,
-    contradicted=0.525, centre_unread=-2.058, beyond_k_best=4.1203),
+    log_probability=1.2122, undetermined=-5.3503, site_refusal=-5.7278, refusal_log_probability=0.5784,
+    contradicted=0.0284, centre_unread=0.9569, beyond_k_best=2.4525),
     costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
 
 
@@ -383,7 +383,8 @@ def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHi
                        assumes: "Decision | None" = None, actual: ActionHistory | None = None) -> list[Candidate]:
     """The candidates of one reading read against ``history``: its own outcome, and the other meaning when its words
     name two panels or studs. ``actual``: the history as it stands, when ``history`` assumes an unanswered question's
-    command done (``assumes``); a command the site would not allow as things stand then counts as a refusal."""
+    command done (``assumes``); a command the site would not allow as things stand then is a question (the worker
+    builds on a step not carried out), scored without the ``site_refusal`` feature of a misreading."""
     outcome = reading.outcome
     tags = reading.read_tags
     base = dict(log_probability=reading.logprob,
@@ -394,7 +395,8 @@ def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHi
         return [Candidate(outcome, _features(**base, **{kind: 1.0}, refusal_log_probability=reading.logprob),
                           reading, assumes)]
     if actual is not None and not _feasible(actual, outcome):
-        return [Candidate(("refusal", "unclear"), _features(**base, site_refusal=1.0), reading, assumes)]
+        # the worker builds on a step not carried out: a question, not a misreading the site refuses
+        return [Candidate(("refusal", "unclear"), _features(**base), reading, assumes)]
     two = two_meanings(outcome, words, tags, history)
     if two is None:
         return [Candidate(outcome, _features(**base), reading, assumes)]

@@ -552,3 +552,22 @@ def test_the_readme_table_of_features_is_the_default_settings():
     readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
     for name, weight in DEFAULT_SETTINGS.weights:
         assert f"| `{name}` | {FEATURES[name]} | {weight:+.2f} |" in readme, name
+
+
+def test_a_command_that_builds_on_a_step_not_carried_out_is_a_question_not_a_site_refusal():
+    """Read against the history an unanswered question leaves open, "the 4 by 6" is the sheet under the one asked
+    about; as things stand that sheet is buried, so the candidate is a question ('unclear') scored without the
+    ``site_refusal`` feature, which is for misreadings the site refuses."""
+    from drywall_lab.decision import Reading, candidates
+
+    history = ActionHistory()
+    asked = ("command", "500322", "500109", "vertical_left")
+    words, tags = _wt("the 4/width by 6/length across the bottom/Hr_btm row/Hr_btm from stud 500100/ID_stud")
+    reading = Reading(tags, 0.0, interpret(words, tags, history))
+    assert reading.outcome[1] == "500322"  # as things stand, the top sheet of its pile
+    cands = candidates(words, [reading], history, [("asked", [asked], 0)])
+    resting = [c for c in cands if c.assumes == "asked"]
+    assert [c.outcome for c in resting] == [("refusal", "unclear")]
+    assert resting[0].features[list(FEATURES).index("site_refusal")] == 0.0
+    here = [c for c in cands if c.assumes is None and c.reading is not None]
+    assert [c.outcome for c in here] == [reading.outcome]

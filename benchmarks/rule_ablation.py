@@ -167,10 +167,6 @@ REGISTRY: tuple[Rule, ...] = (
     Rule("two_meanings", D, "two_meanings", _none, "returns None",
          "words naming two panels or studs give the other meaning as a candidate, as likely as the first",
          "decision"),
-    Rule("upright_words", W, "upright_words", _empty_list, "returns []",
-         "where the words say the panel stands: consulted by placement_contradicted", "decision"),
-    Rule("placement_contradicted", D, "placement_contradicted", _false, "returns False",
-         "feature contradicted: a row placement that goes against an upright word", "decision"),
     Rule("centre_unread", D, "centre_unread", _false, "returns False",
          "feature centre_unread: the default placement although an untagged word says centre", "decision"),
     # step 5, in episodes only
@@ -182,7 +178,7 @@ REGISTRY: tuple[Rule, ...] = (
          "resolve stays open with the commands it may have meant",
          "episode"),
 )
-QUICK_RULES = ("stack_place", "two_meanings", "placement_contradicted", "points_back", "had_it_been_done")
+QUICK_RULES = ("stack_place", "two_meanings", "centre_unread", "points_back", "had_it_been_done")
 
 UNSWITCHABLE: tuple[Unswitchable, ...] = (
     Unswitchable("the decision's features", "decision.DecisionSettings.off",

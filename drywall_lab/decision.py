@@ -20,7 +20,7 @@ action history, and decides in one step:
    ``FEATURES`` lists the features; their weights are fitted on generated episodes only (``fit_weights`` for the
    likelihood of the intended outcome, then ``tune_weights`` for the least cost of the decisions, by
    ``benchmarks/decision.py``), never on the hand-written sets. Switching a feature off is one line:
-   ``replace(settings, off=("contradicted",))``.
+   ``replace(settings, off=("centre_unread",))``.
 3. **Least expected cost** (``DecisionCosts``, written down: a wrong move costs 10, a refusal of a meant command
    1, a question ``ask``)::
 
@@ -72,7 +72,6 @@ FEATURES = {
     "undetermined": "the rules cannot make a command of the reading (a part missing)",
     "site_refusal": "the site refuses the reading's command (overlap, buried panel, unknown id, ...)",
     "refusal_log_probability": "a refusal's log-probability again (a refusal's probability weighs otherwise)",
-    "contradicted": "the reading puts the panel in a row although a word says it stands",
     "centre_unread": "the reading leaves the placement to the default although a word it leaves untagged says centre",
     "beyond_k_best": "'none of these': the log of the probability the k best readings leave over",
 }
@@ -161,8 +160,8 @@ BEST_PATH = DecisionSettings(k=1, costs=DecisionCosts(wrong=0.0, refuse=1.0, ask
 #: corpus's validation split for the shipped tagger (``benchmarks/results/decision.md``; a test checks that they are
 #: the recorded ones).
 DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
-    log_probability=1.2122, undetermined=-5.3503, site_refusal=-5.7278, refusal_log_probability=0.5784,
-    contradicted=0.0284, centre_unread=0.9569, beyond_k_best=2.4525),
+    log_probability=1.2121, undetermined=-5.3507, site_refusal=-5.7277, refusal_log_probability=0.5789,
+    centre_unread=0.9569, beyond_k_best=2.4527),
     costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
 
 
@@ -349,12 +348,6 @@ def two_meanings(outcome: Outcome, words: Sequence[str], tags: Sequence[str],
     return None
 
 
-def placement_contradicted(words: Sequence[str], tags: Sequence[str]) -> bool:
-    """Whether a reading's placement goes against a word that says how the panel goes: a row although a word says it
-    stands ("keep the top clear , the 4x6 stands on 500102" with "top" read as the top row)."""
-    return bool({"Hr_top", "Hr_btm"}.intersection(tags)) and bool(W.upright_words(words))
-
-
 #: Words that say the centre line when no placement tag reads them ("centred on the upright", "in the middle of the
 #: stud"); a stack or a stud named by its middle carries its own tag.
 CENTRE_WORDS = W.MIDDLE_WORDS | {"centred", "centered", "centreline", "centerline"}
@@ -362,7 +355,7 @@ CENTRE_WORDS = W.MIDDLE_WORDS | {"centred", "centered", "centreline", "centerlin
 
 def centre_unread(words: Sequence[str], tags: Sequence[str]) -> bool:
     """Whether a reading takes the default placement (no placement tag) although a word it leaves untagged says the
-    centre line: the sibling of ``placement_contradicted`` for a placement word the tagger did not read."""
+    centre line."""
     if set(PLACEMENT_TAGS).intersection(tags):
         return False
     return any(tag in W.UNTAGGED and W.normalise(w) in CENTRE_WORDS for w, tag in zip(words, tags))
@@ -388,7 +381,6 @@ def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHi
     outcome = reading.outcome
     tags = reading.read_tags
     base = dict(log_probability=reading.logprob,
-                contradicted=float(outcome[0] == "command" and placement_contradicted(words, tags)),
                 centre_unread=float(outcome[0] == "command" and centre_unread(words, tags)))
     if outcome[0] == "refusal":
         kind = "undetermined" if outcome[1] == "undetermined" else "site_refusal"

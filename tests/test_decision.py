@@ -15,7 +15,7 @@ from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, FEATURES, DecisionCosts, DecisionSettings, _weights,
                                   centre_unread, completions, conformal_floor, decide, decide_episode, decide_rows,
                                   decide_tags, decision_scores, expected_costs, fit_weights, outcome_of,
-                                  placement_contradicted, play_episode, question_between, step_outcome, truth_mask,
+                                  play_episode, question_between, step_outcome, truth_mask,
                                   tune_weights, two_meanings)
 from drywall_lab.im import ActionHistory, interpret
 from drywall_lab.nlu import default_tagger
@@ -464,19 +464,6 @@ def test_a_half_understood_refusal_may_have_meant_what_a_rival_read():
     assert ("command", "500320", "500103", "vertical_left") not in completions(d, history, "said", 0.0)
 
 
-def test_a_placement_that_goes_against_the_words_is_weighed_by_its_feature():
-    """"keep the top clear , the 4x6 stands on 500102" with "top" read as the top row: a row goes against "stands"
-    (``contradicted``). At weight 0 the two readings split the probability and the robot asks; weighed down, the
-    reading that stands the panel up carries it."""
-    words, rowed = _wt("keep the top/Hr_top clear , the 4x6/width stands on 500102/ID_stud")
-    plain = ["O" if t == "Hr_top" else t for t in rowed]
-    assert placement_contradicted(words, rowed) and not placement_contradicted(words, plain)
-    kbest = [(rowed, math.log(0.6)), (plain, math.log(0.4))]
-    assert decide(words, kbest, _sure(rowed), TAGS, settings=PLAIN).action == "ask"
-    d = decide(words, kbest, _sure(rowed), TAGS, settings=replace(PLAIN, weights=_weights(contradicted=-6.0)))
-    assert d.action == "recover" and d.command.placement.value == "vertical_left"
-
-
 def test_a_centre_word_left_unread_is_weighed_by_its_feature():
     """"centred on the upright" with no placement tag read: the default placement although an untagged word says
     centre (``centre_unread``). Weighed down, the reading that reads the centre line carries it; a stack or a stud
@@ -508,11 +495,11 @@ def test_fit_weights_finds_the_weight_the_data_call_for():
     names = list(FEATURES)
     x = np.zeros((2, len(names)))
     x[0, names.index("log_probability")], x[1, names.index("log_probability")] = math.log(0.6), math.log(0.4)
-    x[1, names.index("contradicted")] = 1.0
+    x[1, names.index("centre_unread")] = 1.0
     up = dict(fit_weights([(x, np.array([False, True]))] * 20, l2=0.001))
     down = dict(fit_weights([(x, np.array([True, False]))] * 20, l2=0.001))
-    assert up["contradicted"] > 2 and down["contradicted"] < -2
-    assert dict(fit_weights([(x, np.array([False, True]))] * 20, off=("contradicted",)))["contradicted"] == 0.0
+    assert up["centre_unread"] > 2 and down["centre_unread"] < -2
+    assert dict(fit_weights([(x, np.array([False, True]))] * 20, off=("centre_unread",)))["centre_unread"] == 0.0
     with pytest.raises(ValueError, match="no instruction to fit on"):
         fit_weights([(x, np.array([False, False]))])
 

@@ -39,8 +39,8 @@ class ScriptedTagger:
 
 CENTRE = "put the 2 by 8 on stud 500104 centre line"
 READINGS = {
-    CENTRE: [("put the 2/width by 8/length on stud 500104/ID_stud centre/Vr_md line/Vr_md", 0.5),
-             ("put the 2/width by 8/length on stud 500104/ID_stud centre line", 0.45)],
+    CENTRE: [("put the 2/width by 8/length on stud 500104/ID_stud centre/Vr_md line/Vr_md", 0.6),
+             ("put the 2/width by 8/length on stud 500104/ID_stud centre line", 0.25)],
     "the full sheet on stud 500100": [("the full/dim sheet on stud 500100/ID_stud", 0.97)],
     "panel 500300 on stud 500108": [("panel 500300/ID_wall on stud 500108/ID_stud", 0.99)],
     "same again on stud 500106": [("same/dim again/dim on stud 500106/ID_stud", 0.99)],

@@ -928,9 +928,6 @@ def test_a_place_in_a_stack_is_no_row(markup, expected):
 
 
 def test_word_readings_for_the_decision_checks():
-    # the words that say a panel stands: none beside a lying word
-    assert W.upright_words("the 4x6 stands on 500102".split()) == [2]
-    assert W.upright_words("lying down , then upright".split()) == []
     # back-reference words that say the size is the same, and those that only point back
     assert W.says_same_size(["same"]) and W.says_same_size(["like", "previous"])
     assert not W.says_same_size(["another"]) and not W.says_same_size(["those"])

@@ -44,13 +44,6 @@ RIGHT_WORDS = frozenset({"right", "rightmost", "right-most", "righthand", "right
 ORDER_WORDS: dict[str, str] = {"past": "right", "after": "right", "beyond": "right", "along": "right",
                                "before": "left", "back": "left", "short": "left"}
 MIDDLE_WORDS = frozenset({"middle", "center", "centre", "central", "halfway", "mid"})
-#: Words that say a panel lies, but that stay ``O`` (annotation guidelines 4.7: "sideways", "lay it down",
-#: "horizontal(ly)" before a row word): beside one, an upright word says nothing (``upright_words``).
-LYING_WORDS = frozenset({"horizontal", "horizontally", "sideways", "landscape", "lying", "lies", "lay", "lays",
-                         "laid"})
-#: Words that say a panel stands ("upright", "stood up on its end"), also ``O``: the default placement.
-UPRIGHT_WORDS = frozenset({"upright", "vertical", "vertically", "standing", "stood", "stand", "stands", "plumb",
-                           "portrait"})
 #: Row words that say the top and the bottom row (``Hr_top``, ``Hr_btm``): every row phrase of the guidelines has one
 #: ("up top", "across the top", "the upper course", "at the ceiling"; "down low", "floor level"); a row noun after
 #: them ("row", "course", "half") carries the tag too but says neither row on its own.
@@ -220,19 +213,6 @@ def direction_of(words: Sequence[str], quoted: str, what: str) -> str:
 
 def says_middle(words: Iterable[str]) -> bool:
     return any(normalise(w) in MIDDLE_WORDS for w in words)
-
-
-def upright_words(words: Sequence[str]) -> list[int]:
-    """Where the words say the panel stands ("standing up", "upright", ``UPRIGHT_WORDS``): none when a word says it
-    lies (``LYING_WORDS``).
-
-    >>> upright_words("the 4x6 stands on 500102".split()), upright_words("lying down , then upright".split())
-    ([2], [])
-    """
-    said = [normalise(w) for w in words]
-    if any(w in LYING_WORDS for w in said):
-        return []
-    return [i for i, w in enumerate(said) if w in UPRIGHT_WORDS]
 
 
 #: The nouns of a stack (field corpus ``STACK_NOUNS``, "stack", "pile", ...): "the top of the left stack" is a place in it.

@@ -20,7 +20,7 @@ def splits():
 def test_the_training_splits_never_meet_a_held_back_channel_or_pair(splits, split):
     for row in splits[split]:
         chosen = set(row["channels"])
-        assert not chosen & set(C.HELD_BACK), row["id"]
+        assert not chosen & (set(C.HELD_BACK) | set(C.HELD_BACK_OVERLAYS)), row["id"]
         assert not any(set(pair) <= chosen for pair in C.HELD_BACK_PAIRS), row["id"]
 
 
@@ -29,7 +29,23 @@ def test_every_novel_instruction_goes_through_a_held_back_channel_or_pair(splits
     for row in splits["novel"]:
         assert any(set(h) <= set(row["channels"]) for h in held), row["id"]
     used = {name for row in splits["validation"] for name in row["channels"]}
-    assert used == set(C.CHANNELS) - set(C.HELD_BACK)
+    assert used == set(C.CHANNELS) - set(C.HELD_BACK) - set(C.HELD_BACK_OVERLAYS)
+    overlaid = sum(set(C.HELD_BACK_OVERLAYS) <= set(row["channels"]) for row in splits["novel"])
+    assert 0.15 * len(splits["novel"]) < overlaid < 0.25 * len(splits["novel"])
+
+
+def test_an_overlay_leaves_the_rest_of_the_novel_split_as_it_was():
+    """An overlay channel draws from its own random stream: the rows it skips are the rows without it."""
+    rows = FG.generate_field_split("novel", n=60)
+    overlays = dict(C.HELD_BACK_OVERLAYS)
+    C.HELD_BACK_OVERLAYS.clear()
+    try:
+        plain = FG.generate_field_split("novel", n=60)
+    finally:
+        C.HELD_BACK_OVERLAYS.update(overlays)
+    assert len(rows) == len(plain)
+    for row, without in zip(rows, plain):
+        assert ("code_switch" in row["channels"]) == (row != without)
 
 
 def test_a_channel_keeps_every_tag_on_a_word_that_says_it():
@@ -58,6 +74,25 @@ def test_restated_studs_name_one_stud_twice_by_position_and_the_im_reads_it():
             tags = [t.tag for s in out for t in s if t.is_word]
             assert "ID_stud" not in tags and tags.count("St_loc1") >= 2
             assert interpret(words, tags, history=ActionHistory()).outcome()["stud_id"] == str(stud), words
+
+
+def test_code_switch_says_english_in_spanish_and_the_front_end_reads_it_back():
+    """``code_switch``: runs of one tag said in Spanish, and the front end gives back the very words and tags."""
+    from drywall_lab.nlu.normalise import normalise
+
+    rng = Chooser(random.Random(5))
+    sentence = _sentence("take the next sheet from the pile on/Dw_loc1 the/Dw_loc1 left/Dw_loc1 and put it on the "
+                         "top/Hr_top row/Hr_top two/St_loc1 studs/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of "
+                         "the previous/St_loc2 one/St_loc2")
+    switched = 0
+    for _ in range(30):
+        out = C.code_switch(rng, [list(sentence)])
+        said = [t for s in out for t in s if t.is_word]
+        read = normalise(" ".join(t.word for t in said))
+        switched += [t.word for t in said] != [t.word for t in sentence]
+        assert list(read.words) == [t.word.lower() for t in sentence]
+        assert read.tags_of_words([t.tag for t in said]) == [t.tag for t in sentence]
+    assert switched >= 25
 
 
 def test_spoken_ids_say_the_same_id():

@@ -132,11 +132,44 @@ def test_the_alignment_gives_the_workers_words_their_tags_and_the_trace_says_wha
         n.tags_of_said(["O"])
 
 
+@pytest.mark.parametrize("said, read", [
+    ("agarra la placa de la derecha y ponla en el poste 500105, línea central",
+     "grab the board on the right and put it on the stud 500105 centre line"),
+    ("pues the 2x8 en la fila de abajo, desde el 500100", "the 2x8 on the bottom row from the 500100"),  # a filler goes
+    ("una HOJA de cuatro por ocho, parada, linea del centro", "a sheet of four by eight upright centre line"),  # any case, no accents
+    ("stud cinco cero cero uno cero seis", "stud 500106"),  # a Spanish id is read as one
+    ("la misma size, dos studs a la izquierda del anterior", "the same size two studs to the left of the previous one"),
+])
+def test_spanish_mixed_in_is_read_in_english(said, read):
+    assert N.normalise_text(said) == read
+
+
+def test_a_spanish_phrase_keeps_the_workers_words_for_its_tag():
+    n = N.normalise("la pila de la izquierda")
+    assert n.words == ("the", "pile", "on", "the", "left")
+    tags = ["O", "O", "Dw_loc1", "Dw_loc1", "Dw_loc1"]
+    assert n.tags_of_said(tags) == ["O", "O", "Dw_loc1", "Dw_loc1", "Dw_loc1"]
+    assert [step.conclusion for step in n.trace_steps()][-1] == "code switch: 'de la izquierda' -> 'on the left'"
+
+
+def test_no_code_switch_form_is_a_word_of_the_training_corpus():
+    """The code-switch lexicon holds no word an English instruction uses: no training row says one of its forms."""
+    table = N._code_switch_table()
+    longest = max(map(len, table))
+    for row in FG.field_split("train"):
+        folded = [N.fold(w) for w in row["words"]]
+        for i in range(len(folded)):
+            assert not any(tuple(folded[i:i + n]) in table for n in range(1, longest + 1)), (row["id"], folded[i])
+
+
 def test_a_bad_lexicon_line_is_named(tmp_path):
     bad = tmp_path / "lexicon.tsv"
     bad.write_text("CL\tcentre line\n", encoding="utf-8")
     with pytest.raises(ValueError, match="entry 1"):
         N.read_lexicon(bad)
+    bad.write_text("pila\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="entry 1 must be FORM<TAB>READING"):
+        N.read_code_switch(bad)
 
 
 _WORDS = st.sampled_from(["put", "the", "2x8s", "on", "five", "oh", "one", "double", "hundred", "-", "|", "no", "um",

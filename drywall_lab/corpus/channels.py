@@ -17,9 +17,11 @@ keeping the meaning and carrying every word's tag along:
 - ``metric_sizes``: a panel's sides in millimetres, centimetres or metres ("1200 x 2400", "a 600 mm wide one");
 - ``site_references``: the panel or its stack named first and pointed back at inside the instruction ("the middle
   pile has the ones we want, one from that pile ...", "panel 500310 is next, hang it ..."), or a size said as what is
-  left of it ("whatever is left of the full sheets").
+  left of it ("whatever is left of the full sheets");
+- ``code_switch``: Spanish words and phrases mixed in ("la pila de la izquierda", "cuatro por ocho", "otra igual"),
+  from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``).
 
-The front end (``drywall_lab.nlu.normalise``) reads the first three and the metric sides back into the corpus's
+The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides and the code switch back into the corpus's
 written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
 training splits (``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction
 said in a way the tagger never met (first sight).
@@ -595,10 +597,66 @@ def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
+# --- code switch ---------------------------------------------------------------------------------------------
+def _spanish_forms() -> dict[tuple[str, ...], list[str]]:
+    """English words (a reading of the code-switch lexicon) -> the Spanish forms the front end reads as them."""
+    from drywall_lab.nlu.normalise import read_code_switch
+
+    forms: dict[tuple[str, ...], list[str]] = {}
+    for form, reading in read_code_switch():
+        if reading:
+            forms.setdefault(tuple(reading.lower().split()), []).append(form)
+    return forms
+
+
+def _switched(ch: Chooser, sentence: Phrase, forms: dict[tuple[str, ...], list[str]], longest: int) -> Phrase:
+    new: Phrase = []
+    i = 0
+    while i < len(sentence):
+        run = sentence[i:i + longest]
+        n = next((n for n in range(len(run), 0, -1) if all(t.is_word for t in run[:n])
+                  and len({(t.tag, t.coref) for t in run[:n]}) == 1
+                  and tuple(t.word.lower() for t in run[:n]) in forms), 0)
+        if n and ch.chance(0.5):
+            spanish = ch.rng.choice(forms[tuple(t.word.lower() for t in run[:n])])
+            new += [Token(w, run[0].tag, run[0].coref) for w in spanish.split()]
+            i += n
+            continue
+        new.append(sentence[i])
+        i += 1
+    return new
+
+
+def code_switch(ch: Chooser, sentences: Sentences) -> Sentences:
+    """A worker who mixes Spanish into the instruction: each run of words that the code-switch lexicon reads
+    (``data/lexicon/code_switch.tsv``), of one tag, is said in Spanish half the time, the longest run first ("the
+    pile on the left" -> "la pila de la izquierda"); the words keep their tag. A sentence the front end would not
+    read back into its own words and tags (Spanish forms run together into a longer one) is drawn again, or left in
+    English."""
+    from drywall_lab.nlu.normalise import normalise
+
+    forms = _spanish_forms()
+    longest = max(map(len, forms))
+
+    def read(phrase: Phrase) -> tuple[list[str], list[str]]:
+        said = [t for t in phrase if t.is_word]
+        n = normalise(" ".join(t.word for t in said))
+        return [w.lower() for w in n.words], n.tags_of_words([t.tag for t in said])
+
+    out: Sentences = []
+    for sentence in sentences:
+        english = read(sentence)
+        new = next((new for new in (_switched(ch, sentence, forms, longest) for _ in range(3))
+                    if read(new) == english), sentence)
+        out.append(new)
+    return out
+
+
 CHANNELS: dict[str, Channel] = {
     "restated_studs": restated_studs, "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk,
     "spoken_ids": spoken_ids, "shorthand": shorthand,
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
+    "code_switch": code_switch,
 }
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
 CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, "relative_talk": 0.35,
@@ -606,6 +664,9 @@ CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, 
                                    "plural_sizes": 0.10, "restated_studs": 0.06}
 #: Held back whole: never in train, validation or test; the novel split uses it.
 HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
+#: Held back whole and laid over the novel split's instructions at this rate, on top of their held-back channel or pair,
+#: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
+HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))
@@ -630,6 +691,22 @@ def apply_channels(ch: Chooser, sentences: Sentences, names: tuple[str, ...]) ->
     for name in names:
         sentences = CHANNELS[name](ch, sentences)
     return sentences
+
+
+def overlay_rng(row_id: str, name: str) -> Chooser:
+    """The random draws of one overlay channel on one row, apart from the split's own."""
+    return Chooser(random.Random(f"{row_id}-{name}"), novel=True)
+
+
+def apply_overlays(row_id: str, sentences: Sentences) -> tuple[Sentences, tuple[str, ...]]:
+    """A novel instruction through each overlay channel its own draw picks (``HELD_BACK_OVERLAYS``), and their names."""
+    applied = []
+    for name, rate in HELD_BACK_OVERLAYS.items():
+        ch = overlay_rng(row_id, name)
+        if ch.chance(rate):
+            sentences = CHANNELS[name](ch, sentences)
+            applied.append(name)
+    return sentences, tuple(applied)
 
 
 def held_back_combinations() -> list[tuple[str, ...]]:

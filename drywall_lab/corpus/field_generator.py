@@ -1159,6 +1159,9 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
             sentences = texting_forms(ch, sentences)
         channels = C.choose_channels(rng, novel=split == "novel")
         sentences = C.apply_channels(ch, sentences, channels)
+        if split == "novel":
+            sentences, overlays = C.apply_overlays(f"field-{split}-{row_no:05d}", sentences)
+            channels += overlays
         said = read_through_front_end(render(ch, sentences, spoken, shout=register == "boss"))
         if not said[1]:
             return None

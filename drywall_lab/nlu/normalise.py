@@ -4,8 +4,9 @@ People say and type the same instruction in many surface forms: an id read out d
 eight", "five double-oh one one two", "five hundred one-oh-eight") or split ("500 104", "500-104"), a size in the
 plural ("one of the 2x8s"), a board's sides in metric ("1200 x 2400", "600 mm wide", "twelve hundred by twenty-four
 hundred": the feet they stand for), the site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields
-separated by ``|`` or ``->``), and spoken disfluency (fillers, stutters, a false start broken off with a dash and
-repaired: "the four by- no, the two by eight"). The paper's tagger (Sec. 3.1) learns surface forms from its
+separated by ``|`` or ``->``), spoken disfluency (fillers, stutters, a false start broken off with a dash and
+repaired: "the four by- no, the two by eight"), and Spanish words a crew mixes into English ("la pila de la
+izquierda", "cuatro por ocho": ``data/lexicon/code_switch.tsv``). The paper's tagger (Sec. 3.1) learns surface forms from its
 corpus; a form it never met is a guess. This module reads every such form into one written form first, for training
 and prediction alike (``drywall_lab.corpus.field_generator`` writes its rows through it), so that a new voice
 reaches the tagger in words it knows.
@@ -24,6 +25,7 @@ from __future__ import annotations
 
 import csv
 import re
+import unicodedata
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -34,6 +36,7 @@ from drywall_lab.im.trace import TraceStep
 from drywall_lab.site import DATA_DIR
 
 LEXICON_PATH = DATA_DIR / "lexicon" / "abbreviations.tsv"
+CODE_SWITCH_PATH = DATA_DIR / "lexicon" / "code_switch.tsv"
 
 #: Sounds and phrases that carry nothing in an instruction (spoken disfluency).
 FILLERS: frozenset[tuple[str, ...]] = frozenset({
@@ -134,6 +137,30 @@ def read_lexicon(path: Path | str = LEXICON_PATH) -> tuple[dict[str, str], dict[
     return exact, any_case
 
 
+def fold(word: str) -> str:
+    """A word as the code-switch lexicon matches it: lower case, accents dropped ("Perdón" -> "perdon")."""
+    return "".join(c for c in unicodedata.normalize("NFD", word.lower()) if unicodedata.category(c) != "Mn")
+
+
+@lru_cache(maxsize=4)
+def read_code_switch(path: Path | str = CODE_SWITCH_PATH) -> tuple[tuple[str, str], ...]:
+    """The code-switch lexicon (``data/lexicon/code_switch.tsv``): (form, reading) pairs as written, a reading of
+    "" dropping its form."""
+    entries = []
+    with open(path, encoding="utf-8") as f:
+        for number, row in enumerate(csv.reader((line for line in f if line.strip() and not line.startswith("#")),
+                                                delimiter="\t"), start=1):
+            if len(row) != 2 or not row[0].strip() or not row[1].strip():
+                raise ValueError(f"{path}: entry {number} must be FORM<TAB>READING, not {row}")
+            entries.append((row[0].strip(), "" if row[1].strip() == "-" else row[1].strip()))
+    return tuple(entries)
+
+
+@lru_cache(maxsize=4)
+def _code_switch_table(path: Path | str = CODE_SWITCH_PATH) -> dict[tuple[str, ...], tuple[str, ...]]:
+    return {tuple(fold(w) for w in form.split()): tuple(reading.split()) for form, reading in read_code_switch(path)}
+
+
 # --- steps: each takes and returns a list of pieces, and says what it changed ------------------------------
 Step = Callable[[list[Piece], list[Change]], list[Piece]]
 
@@ -200,6 +227,30 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
         if reading != "-":
             words = reading.split()
             out += [Piece(w, p.said, p.broken_off and k == len(words) - 1) for k, w in enumerate(words)]
+    return out
+
+
+def translate_code_switch(pieces: list[Piece], changes: list[Change],
+                          lexicon: Path | str = CODE_SWITCH_PATH) -> list[Piece]:
+    """Spanish words and phrases mixed into an instruction read in English from the code-switch lexicon, the
+    longest form first ("la pila de la izquierda" -> "the pile on the left", "cuatro por ocho" -> "four by eight");
+    a filler ("pues") is dropped."""
+    table = _code_switch_table(lexicon)
+    longest = max(map(len, table))
+    out: list[Piece] = []
+    i = 0
+    while i < len(pieces):
+        folded = [fold(p.word) for p in pieces[i:i + longest]]
+        n = next((n for n in range(len(folded), 0, -1) if tuple(folded[:n]) in table), 0)
+        if not n:
+            out.append(pieces[i])
+            i += 1
+            continue
+        span, reading = pieces[i:i + n], table[tuple(folded[:n])]
+        changes.append(Change("code switch", " ".join(p.word for p in span), " ".join(reading)))
+        said = tuple(k for p in span for k in p.said)
+        out += [Piece(w, said, span[-1].broken_off and k == len(reading) - 1) for k, w in enumerate(reading)]
+        i += n
     return out
 
 
@@ -527,8 +578,8 @@ def resolve_false_starts(pieces: list[Piece], changes: list[Change]) -> list[Pie
 
 
 #: The front end's steps, in order.
-STEPS: tuple[Step, ...] = (split_fields, expand_shorthand, drop_fillers, read_ids, resolve_false_starts, metric_sizes,
-                           singular_sizes)
+STEPS: tuple[Step, ...] = (split_fields, translate_code_switch, expand_shorthand, drop_fillers, read_ids,
+                           resolve_false_starts, metric_sizes, singular_sizes)
 
 
 #: Written labels that only introduce the number after them ("stud no. 500104"); their full stop is what tells them

@@ -77,7 +77,8 @@ def test_restated_studs_name_one_stud_twice_by_position_and_the_im_reads_it():
 
 
 def test_code_switch_says_english_in_spanish_and_the_front_end_reads_it_back():
-    """``code_switch``: runs of one tag said in Spanish, and the front end gives back the very words and tags."""
+    """``code_switch``: runs of one tag said in another language, and the front end gives back the very words and
+    tags."""
     from drywall_lab.nlu.normalise import normalise
 
     rng = Chooser(random.Random(5))

@@ -139,8 +139,10 @@ def test_the_alignment_gives_the_workers_words_their_tags_and_the_trace_says_wha
     ("una HOJA de cuatro por ocho, parada, linea del centro", "a sheet of four by eight upright centre line"),  # any case, no accents
     ("stud cinco cero cero uno cero seis", "stud 500106"),  # a Spanish id is read as one
     ("la misma size, dos studs a la izquierda del anterior", "the same size two studs to the left of the previous one"),
+    ("nimm die Platte vom linken Stapel, hochkant auf Ständer 500103", "take the panel from the left pile upright on stud 500103"),
+    ("eine schmale, quer in der unteren Reihe, ab dem ersten Staender", "a narrow lying flat in the bottom row from the first stud"),
 ])
-def test_spanish_mixed_in_is_read_in_english(said, read):
+def test_another_language_mixed_in_is_read_in_english(said, read):
     assert N.normalise_text(said) == read
 
 
@@ -168,8 +170,11 @@ def test_a_bad_lexicon_line_is_named(tmp_path):
     with pytest.raises(ValueError, match="entry 1"):
         N.read_lexicon(bad)
     bad.write_text("pila\n", encoding="utf-8")
-    with pytest.raises(ValueError, match="entry 1 must be FORM<TAB>READING"):
+    with pytest.raises(ValueError, match="entry 1 must be FORM<TAB>READING<TAB>LANGUAGE"):
         N.read_code_switch(bad)
+    bad.write_text("pila\tpile\tes\npila\tstack of sheets\tit\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="'pila' is read as 'pile' and as 'stack of sheets'"):
+        N._code_switch_table(bad)
 
 
 _WORDS = st.sampled_from(["put", "the", "2x8s", "on", "five", "oh", "one", "double", "hundred", "-", "|", "no", "um",

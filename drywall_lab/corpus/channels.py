@@ -18,8 +18,8 @@ keeping the meaning and carrying every word's tag along:
 - ``site_references``: the panel or its stack named first and pointed back at inside the instruction ("the middle
   pile has the ones we want, one from that pile ...", "panel 500310 is next, hang it ..."), or a size said as what is
   left of it ("whatever is left of the full sheets");
-- ``code_switch``: Spanish words and phrases mixed in ("la pila de la izquierda", "cuatro por ocho", "otra igual"),
-  from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``).
+- ``code_switch``: Spanish or German words and phrases mixed in ("la pila de la izquierda", "cuatro por ocho",
+  "der mittlere Stapel"), from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``).
 
 The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides and the code switch back into the corpus's
 written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
@@ -598,14 +598,14 @@ def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
 
 
 # --- code switch ---------------------------------------------------------------------------------------------
-def _spanish_forms() -> dict[tuple[str, ...], list[str]]:
-    """English words (a reading of the code-switch lexicon) -> the Spanish forms the front end reads as them."""
+def _foreign_forms() -> dict[str, dict[tuple[str, ...], list[str]]]:
+    """Language -> English words (a reading of the code-switch lexicon) -> the forms the front end reads as them."""
     from drywall_lab.nlu.normalise import read_code_switch
 
-    forms: dict[tuple[str, ...], list[str]] = {}
-    for form, reading in read_code_switch():
+    forms: dict[str, dict[tuple[str, ...], list[str]]] = {}
+    for form, reading, language in read_code_switch():
         if reading:
-            forms.setdefault(tuple(reading.lower().split()), []).append(form)
+            forms.setdefault(language, {}).setdefault(tuple(reading.lower().split()), []).append(form)
     return forms
 
 
@@ -628,14 +628,16 @@ def _switched(ch: Chooser, sentence: Phrase, forms: dict[tuple[str, ...], list[s
 
 
 def code_switch(ch: Chooser, sentences: Sentences) -> Sentences:
-    """A worker who mixes Spanish into the instruction: each run of words that the code-switch lexicon reads
-    (``data/lexicon/code_switch.tsv``), of one tag, is said in Spanish half the time, the longest run first ("the
-    pile on the left" -> "la pila de la izquierda"); the words keep their tag. A sentence the front end would not
-    read back into its own words and tags (Spanish forms run together into a longer one) is drawn again, or left in
+    """A worker who mixes another language into the instruction (one of the code-switch lexicon's,
+    ``data/lexicon/code_switch.tsv``, drawn for the instruction): each run of words that the lexicon reads, of one
+    tag, is said in that language half the time, the longest run first ("the pile on the left" -> "la pila de la
+    izquierda", "the middle pile" -> "der mittlere Stapel"); the words keep their tag. A sentence the front end would
+    not read back into its own words and tags (forms run together into a longer one) is drawn again, or left in
     English."""
     from drywall_lab.nlu.normalise import normalise
 
-    forms = _spanish_forms()
+    by_language = _foreign_forms()
+    forms = by_language[ch.rng.choice(sorted(by_language))]
     longest = max(map(len, forms))
 
     def read(phrase: Phrase) -> tuple[list[str], list[str]]:

@@ -5,8 +5,8 @@ eight", "five double-oh one one two", "five hundred one-oh-eight") or split ("50
 plural ("one of the 2x8s"), a board's sides in metric ("1200 x 2400", "600 mm wide", "twelve hundred by twenty-four
 hundred": the feet they stand for), the site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields
 separated by ``|`` or ``->``), spoken disfluency (fillers, stutters, a false start broken off with a dash and
-repaired: "the four by- no, the two by eight"), and Spanish words a crew mixes into English ("la pila de la
-izquierda", "cuatro por ocho": ``data/lexicon/code_switch.tsv``). The paper's tagger (Sec. 3.1) learns surface forms from its
+repaired: "the four by- no, the two by eight"), and Spanish or German words a crew mixes into English ("la pila de
+la izquierda", "cuatro por ocho", "der mittlere Stapel": ``data/lexicon/code_switch.tsv``). The paper's tagger (Sec. 3.1) learns surface forms from its
 corpus; a form it never met is a guess. This module reads every such form into one written form first, for training
 and prediction alike (``drywall_lab.corpus.field_generator`` writes its rows through it), so that a new voice
 reaches the tagger in words it knows.
@@ -143,22 +143,29 @@ def fold(word: str) -> str:
 
 
 @lru_cache(maxsize=4)
-def read_code_switch(path: Path | str = CODE_SWITCH_PATH) -> tuple[tuple[str, str], ...]:
-    """The code-switch lexicon (``data/lexicon/code_switch.tsv``): (form, reading) pairs as written, a reading of
-    "" dropping its form."""
+def read_code_switch(path: Path | str = CODE_SWITCH_PATH) -> tuple[tuple[str, str, str], ...]:
+    """The code-switch lexicon (``data/lexicon/code_switch.tsv``): (form, reading, language) as written, a reading
+    of "" dropping its form."""
     entries = []
     with open(path, encoding="utf-8") as f:
         for number, row in enumerate(csv.reader((line for line in f if line.strip() and not line.startswith("#")),
                                                 delimiter="\t"), start=1):
-            if len(row) != 2 or not row[0].strip() or not row[1].strip():
-                raise ValueError(f"{path}: entry {number} must be FORM<TAB>READING, not {row}")
-            entries.append((row[0].strip(), "" if row[1].strip() == "-" else row[1].strip()))
+            if len(row) != 3 or not all(cell.strip() for cell in row):
+                raise ValueError(f"{path}: entry {number} must be FORM<TAB>READING<TAB>LANGUAGE, not {row}")
+            form, reading, language = (cell.strip() for cell in row)
+            entries.append((form, "" if reading == "-" else reading, language))
     return tuple(entries)
 
 
 @lru_cache(maxsize=4)
 def _code_switch_table(path: Path | str = CODE_SWITCH_PATH) -> dict[tuple[str, ...], tuple[str, ...]]:
-    return {tuple(fold(w) for w in form.split()): tuple(reading.split()) for form, reading in read_code_switch(path)}
+    table: dict[tuple[str, ...], tuple[str, ...]] = {}
+    for form, reading, _ in read_code_switch(path):
+        key = tuple(fold(w) for w in form.split())
+        if table.get(key, tuple(reading.split())) != tuple(reading.split()):
+            raise ValueError(f"{path}: {form!r} is read as {' '.join(table[key])!r} and as {reading!r}")
+        table[key] = tuple(reading.split())
+    return table
 
 
 # --- steps: each takes and returns a list of pieces, and says what it changed ------------------------------
@@ -232,7 +239,7 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
 
 def translate_code_switch(pieces: list[Piece], changes: list[Change],
                           lexicon: Path | str = CODE_SWITCH_PATH) -> list[Piece]:
-    """Spanish words and phrases mixed into an instruction read in English from the code-switch lexicon, the
+    """Words and phrases of another language mixed into an instruction read in English from the code-switch lexicon, the
     longest form first ("la pila de la izquierda" -> "the pile on the left", "cuatro por ocho" -> "four by eight");
     a filler ("pues") is dropped."""
     table = _code_switch_table(lexicon)

@@ -18,6 +18,7 @@ keeping the meaning and carrying every word's tag along:
 - ``site_references``: the panel or its stack named first and pointed back at inside the instruction ("the middle
   pile has the ones we want, one from that pile ...", "panel 500310 is next, hang it ..."), or a size said as what is
   left of it ("whatever is left of the full sheets");
+- ``openers``: the instruction opened as the next job is ("last thing:", "first off,"), words that name nothing;
 - ``code_switch``: Spanish or German words and phrases mixed in ("la pila de la izquierda", "cuatro por ocho",
   "der mittlere Stapel"), from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``).
 
@@ -654,11 +655,26 @@ def code_switch(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
+# --- openers -------------------------------------------------------------------------------------------------
+def openers(ch: Chooser, sentences: Sentences) -> Sentences:
+    """The instruction opened as people open the next job ("last thing:", "okay, one more thing,", "first off,",
+    "final one for today -"): its "last", "first" or "one" names nothing (``O``); a pause after it where the
+    punctuation is kept."""
+    from drywall_lab.nlu.normalise import _OPENER_LEADS, OPENERS
+
+    words = list(ch.rng.choice(sorted(OPENERS)))
+    if ch.chance(0.25):
+        words = [ch.rng.choice(sorted(_OPENER_LEADS)), ","] + words
+    opener = [Token(w, None, None) if w == "," else Token(w) for w in words]
+    opener.append(Token(ch.rng.choice([":", ","]), None, None))
+    return [opener + sentences[0], *sentences[1:]] if sentences else sentences
+
+
 CHANNELS: dict[str, Channel] = {
     "restated_studs": restated_studs, "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk,
     "spoken_ids": spoken_ids, "shorthand": shorthand,
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
-    "code_switch": code_switch,
+    "code_switch": code_switch, "openers": openers,
 }
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
 CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, "relative_talk": 0.35,
@@ -668,7 +684,7 @@ CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, 
 HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: Held back whole and laid over the novel split's instructions at this rate, on top of their held-back channel or pair,
 #: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
-HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2}
+HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))

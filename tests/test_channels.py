@@ -97,17 +97,13 @@ def test_code_switch_says_english_in_spanish_and_the_front_end_reads_it_back():
     assert switched >= 25
 
 
-def test_an_opener_names_nothing_and_the_front_end_drops_it_where_a_pause_follows():
-    from drywall_lab.nlu.normalise import normalise
-
+def test_an_opener_names_nothing():
     rng = Chooser(random.Random(6))
     sentence = _sentence("put the 2x8/width on stud 500104/ID_stud")
     for _ in range(30):
         out = C.openers(rng, [list(sentence)])
         said = [t for t in out[0] if t.is_word]
-        assert [t.tag for t in said[:-len(sentence)]] == ["O"] * (len(said) - len(sentence))
-        text = "".join(t.word if not t.is_word else " " + t.word for t in out[0])  # punctuation as typed
-        assert normalise(text).words == ("put", "the", "2x8", "on", "stud", "500104"), text
+        assert said[-len(sentence):] == sentence and {t.tag for t in said[:-len(sentence)]} == {"O"}
 
 
 def test_spoken_ids_say_the_same_id():

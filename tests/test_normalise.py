@@ -164,18 +164,6 @@ def test_no_code_switch_form_is_a_word_of_the_training_corpus():
             assert not any(tuple(folded[i:i + n]) in table for n in range(1, longest + 1)), (row["id"], folded[i])
 
 
-@pytest.mark.parametrize("said, read", [
-    ("Last thing: the 2x8 on stud 500104", "the 2x8 on stud 500104"),
-    ("okay, one more thing, a full sheet on 500100", "a full sheet on 500100"),
-    ("final panel for today - the 4x6 on 500102", "the 4x6 on 500102"),
-    ("last thing the 2x8 on stud 500104", "last thing the 2x8 on stud 500104"),  # no pause: left to the tagger
-    ("the last one on stud 500104", "the last one on stud 500104"),  # a back-reference, not an opener
-    ("put it on 500104, last thing: check the plate", "put it on 500104 last thing check the plate"),  # not at the start
-])
-def test_an_opener_at_the_start_is_dropped_where_a_pause_follows(said, read):
-    assert N.normalise_text(said) == read
-
-
 def test_a_bad_lexicon_line_is_named(tmp_path):
     bad = tmp_path / "lexicon.tsv"
     bad.write_text("CL\tcentre line\n", encoding="utf-8")

@@ -656,15 +656,22 @@ def code_switch(ch: Chooser, sentences: Sentences) -> Sentences:
 
 
 # --- openers -------------------------------------------------------------------------------------------------
+#: How people open the next job: words that name nothing ("last thing", "one more thing", "first off").
+OPENERS: tuple[tuple[str, ...], ...] = tuple(sorted(
+    {(*lead, noun) for lead in (("last",), ("final",), ("first",), ("next",), ("one", "last"), ("one", "more"))
+     for noun in ("thing", "job", "bit")}
+    | {("first", "off"), ("next", "up"), ("first", "of", "all"), ("last", "of", "all")}
+    | {(last, noun, *when) for last in ("last", "final") for noun in ("one", "panel", "sheet")
+       for when in (("for", "today"), ("for", "me"), ("of", "the", "day"))}))
+_OPENER_LEADS = ("okay", "right", "so", "and", "alright")
+
+
 def openers(ch: Chooser, sentences: Sentences) -> Sentences:
     """The instruction opened as people open the next job ("last thing:", "okay, one more thing,", "first off,",
-    "final one for today -"): its "last", "first" or "one" names nothing (``O``); a pause after it where the
-    punctuation is kept."""
-    from drywall_lab.nlu.normalise import _OPENER_LEADS, OPENERS
-
-    words = list(ch.rng.choice(sorted(OPENERS)))
+    "final one for today:"): its "last", "first" or "one" names nothing (``O``)."""
+    words = list(ch.rng.choice(OPENERS))
     if ch.chance(0.25):
-        words = [ch.rng.choice(sorted(_OPENER_LEADS)), ","] + words
+        words = [ch.rng.choice(_OPENER_LEADS), ","] + words
     opener = [Token(w, None, None) if w == "," else Token(w) for w in words]
     opener.append(Token(ch.rng.choice([":", ","]), None, None))
     return [opener + sentences[0], *sentences[1:]] if sentences else sentences

@@ -62,8 +62,6 @@ _DIGITS = re.compile(r"^\d+$")
 _SPLIT_ID = re.compile(r"^(\d{3})[-–.,](\d{3})$")
 _MARKED_ID = re.compile(r"^(?:#|no\.?|nr\.?|num\.?)(5\d{5})$", re.I)
 _BROKEN_OFF = re.compile(r"[\w'][-–—]+$")
-_PAUSE = re.compile(r"\w[,:;]+$")
-_DASH = re.compile(r"^[-–—:]+$")
 _FIELD_SEPARATORS = re.compile(r"\s*(?:\||->|=>|→|⇒|—>|:(?=\S))\s*")
 _PLURAL_SIZE = re.compile(r"^(.*?(?:\d|one|two|three|four|five|six|seven|eight|nine|ten|twelve)'?)(?:'?s|es)$", re.I)
 _SIZE_WORD = re.compile(r"(?:\d|four|two|six|eight)'?\s*(?:x|by|-by-)", re.I)
@@ -76,7 +74,6 @@ class Piece:
     word: str
     said: tuple[int, ...]
     broken_off: bool = False  #: the worker broke off after it ("by-"): a false start or a repair follows
-    pause: bool = False  #: a comma, colon or dash follows it in the worker's text (set only as the text is read)
 
 
 @dataclass(frozen=True)
@@ -270,33 +267,6 @@ def _starts(pieces: Sequence[Piece], i: int, phrases: Sequence[tuple[str, ...]] 
         if tuple(p.word.lower() for p in pieces[i:i + len(phrase)]) == phrase:
             return len(phrase)
     return 0
-
-
-#: Words that may lead into an opener ("okay, last thing: ...").
-_OPENER_LEADS = frozenset({"and", "ok", "okay", "right", "alright", "so", "now", "oh"})
-#: What a worker says to open an instruction, not to name anything: "last thing:", "one more thing,", "first off,",
-#: "last one for today:". Read only at the start and only before a pause, so that "the last one" and "the first
-#: stud" stay what they are.
-OPENERS: frozenset[tuple[str, ...]] = frozenset(
-    {(*lead, noun) for lead in (("last",), ("final",), ("first",), ("next",), ("one", "last"), ("one", "more"),
-                                ("one", "final"))
-     for noun in ("thing", "job", "bit", "task")}
-    | {(first, "off") for first in ("first", "next")} | {("next", "up"), ("first", "up"), ("last", "up"),
-                                                          ("first", "of", "all"), ("last", "of", "all")}
-    | {(last, noun, *when) for last in ("last", "final") for noun in ("one", "panel", "sheet", "board")
-       for when in (("for", "today"), ("for", "me"), ("for", "now"), ("of", "the", "day"), ("today",))})
-
-
-def drop_opener(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
-    """A discourse opener at the start of the instruction ("Last thing:", "okay, one more thing,", "first off,"),
-    followed by a pause, is dropped: its "last" or "first" names no panel and no stud."""
-    lead = 1 if pieces and pieces[0].word.lower() in _OPENER_LEADS and pieces[0].pause else 0
-    n = _starts(pieces, lead, OPENERS)
-    if not n or not pieces[lead + n - 1].pause:
-        return pieces
-    n += lead + (lead + n < len(pieces) and bool(_DASH.match(pieces[lead + n].word)))  # the dash said after it
-    changes.append(Change("opener", " ".join(p.word for p in pieces[:n]), ""))
-    return pieces[n:]
 
 
 def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
@@ -615,7 +585,7 @@ def resolve_false_starts(pieces: list[Piece], changes: list[Change]) -> list[Pie
 
 
 #: The front end's steps, in order.
-STEPS: tuple[Step, ...] = (drop_opener, split_fields, translate_code_switch, expand_shorthand, drop_fillers, read_ids,
+STEPS: tuple[Step, ...] = (split_fields, translate_code_switch, expand_shorthand, drop_fillers, read_ids,
                            resolve_false_starts, metric_sizes, singular_sizes)
 
 
@@ -632,12 +602,10 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
     said: list[str] = []
     pieces: list[Piece] = []
     for raw in text.split():
-        if _DASH.match(raw) and pieces:  # "last one for today - the 4x8": a pause after the word before
-            pieces[-1] = Piece(pieces[-1].word, pieces[-1].said, pieces[-1].broken_off, True)
         for word in tokenize(raw):
             broken_off = bool(_BROKEN_OFF.search(raw))
             read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word
-            pieces.append(Piece(read, (len(said),), broken_off, bool(_PAUSE.search(raw))))
+            pieces.append(Piece(read, (len(said),), broken_off))
             said.append(word)
     return said, pieces
 

@@ -14,7 +14,8 @@ Every set is tagged once by the shipped tagger (``drywall_lab.nlu.default_tagger
 decision layer's ``k``); a caching tagger then hands the stored readings to the decision layer, which is run again
 with each rule switched off (``DEFAULT_SETTINGS``). The sets:
 
-- **generated** (the field corpus, ``drywall_lab.splits``): ``field-validation`` and ``field-novel``, each decided two
+- **generated** (the field corpus, ``drywall_lab.splits``): ``field-validation``, ``field-test`` and ``field-novel``
+  (the splits the tagger did not train on), each decided two
   ways: row by row in the row's own context (``decide_rows``: the figure ``acc_decided`` of ``evaluate``) and played
   as episodes (``play_episode``, as ``benchmarks/decision.py`` plays them: each step against the commands the layer
   itself acted on), which is where step 5 of the layer (a question left open) can act at all;
@@ -51,7 +52,7 @@ ROOT = Path(__file__).resolve().parent.parent
 RESULTS = Path(__file__).resolve().parent / "results" / "rule_ablation.md"
 SHARED_FIELD = ROOT.parent / "shared" / "field"
 FIRST_SIGHT = ROOT / "data" / "first_sight"
-GENERATED_SPLITS = ("field-validation", "field-novel")
+GENERATED_SPLITS = ("field-validation", "field-test", "field-novel")
 QUICK_ROWS = 50
 #: How many moved steps the report quotes, per rule and set.
 EXAMPLES = 2

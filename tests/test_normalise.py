@@ -179,7 +179,8 @@ def test_a_bad_lexicon_line_is_named(tmp_path):
 
 _WORDS = st.sampled_from(["put", "the", "2x8s", "on", "five", "oh", "one", "double", "hundred", "-", "|", "no", "um",
                           "CL", "r", "L", "by-", "the-", "500", "104", "#500104", "like,", "stud", "eight", "twenty",
-                          "sorry", "I", "mean", "4x", "x", "you", "know", "", "!", "->"])
+                          "sorry", "I", "mean", "4x", "x", "you", "know", "", "!", "->", "la", "de", "izquierda",
+                          "al", "lado", "pues", "noch", "eine", "Ständer", "cinco", "cero", "por"])
 
 
 @settings(max_examples=300, deadline=None)

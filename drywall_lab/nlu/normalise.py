@@ -137,6 +137,7 @@ def read_lexicon(path: Path | str = LEXICON_PATH) -> tuple[dict[str, str], dict[
     return exact, any_case
 
 
+@lru_cache(maxsize=65536)
 def fold(word: str) -> str:
     """A word as the code-switch lexicon matches it: lower case, accents dropped ("Perdón" -> "perdon")."""
     return "".join(c for c in unicodedata.normalize("NFD", word.lower()) if unicodedata.category(c) != "Mn")
@@ -244,16 +245,16 @@ def translate_code_switch(pieces: list[Piece], changes: list[Change],
     a filler ("pues") is dropped."""
     table = _code_switch_table(lexicon)
     longest = max(map(len, table))
+    folded = [fold(p.word) for p in pieces]
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
-        folded = [fold(p.word) for p in pieces[i:i + longest]]
-        n = next((n for n in range(len(folded), 0, -1) if tuple(folded[:n]) in table), 0)
+        n = next((n for n in range(min(longest, len(pieces) - i), 0, -1) if tuple(folded[i:i + n]) in table), 0)
         if not n:
             out.append(pieces[i])
             i += 1
             continue
-        span, reading = pieces[i:i + n], table[tuple(folded[:n])]
+        span, reading = pieces[i:i + n], table[tuple(folded[i:i + n])]
         changes.append(Change("code switch", " ".join(p.word for p in span), " ".join(reading)))
         said = tuple(k for p in span for k in p.said)
         out += [Piece(w, said, span[-1].broken_off and k == len(reading) - 1) for k, w in enumerate(reading)]

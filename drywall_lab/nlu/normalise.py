@@ -262,9 +262,20 @@ def translate_code_switch(pieces: list[Piece], changes: list[Change],
     return out
 
 
-def _starts(pieces: Sequence[Piece], i: int, phrases: Sequence[tuple[str, ...]] | frozenset) -> int:
-    """The length of the phrase of ``phrases`` that starts at ``i`` (0: none)."""
+@lru_cache(maxsize=16)
+def _by_first_word(phrases: tuple[tuple[str, ...], ...] | frozenset) -> dict[str, tuple[tuple[str, ...], ...]]:
+    """``phrases`` by their first word, the longest first."""
+    out: dict[str, list[tuple[str, ...]]] = {}
     for phrase in sorted(phrases, key=len, reverse=True):
+        out.setdefault(phrase[0], []).append(phrase)
+    return {word: tuple(group) for word, group in out.items()}
+
+
+def _starts(pieces: Sequence[Piece], i: int, phrases: tuple[tuple[str, ...], ...] | frozenset) -> int:
+    """The length of the phrase of ``phrases`` that starts at ``i`` (0: none), the longest first."""
+    if i >= len(pieces):
+        return 0
+    for phrase in _by_first_word(phrases).get(pieces[i].word.lower(), ()):
         if tuple(p.word.lower() for p in pieces[i:i + len(phrase)]) == phrase:
             return len(phrase)
     return 0

@@ -21,8 +21,9 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable, Sequence
+from typing import Callable, Iterator, Sequence
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from results_file import add_results_options, command_line, results_path, write_results_file  # noqa: E402
@@ -47,14 +48,21 @@ def without(step: Callable | None) -> tuple[Callable, ...]:
     return tuple(s for s in N.STEPS if s is not step)
 
 
-def read_with(steps: tuple[Callable, ...], text: str) -> list[str]:
-    """``text`` through ``steps`` (the module's ``STEPS`` put back afterwards)."""
+@contextmanager
+def front_end_of(steps: tuple[Callable, ...]) -> Iterator[None]:
+    """The front end reads with ``steps`` inside the block (the module's ``STEPS`` put back afterwards)."""
     shipped = N.STEPS
     N.STEPS = steps
     try:
-        return list(N.normalise(text).words)
+        yield
     finally:
         N.STEPS = shipped
+
+
+def read_with(steps: tuple[Callable, ...], text: str) -> list[str]:
+    """``text`` through ``steps``."""
+    with front_end_of(steps):
+        return list(N.normalise(text).words)
 
 
 def generated_effect(rows: Sequence[dict], step: Callable, tagger, base: list) -> dict:
@@ -65,12 +73,7 @@ def generated_effect(rows: Sequence[dict], step: Callable, tagger, base: list) -
     if not changed:
         return {"rows": 0, "right_on": 0, "right_off": 0, "wrong_on": 0, "wrong_off": 0}
     on = decision_scores([rows[k] for k, _ in changed], [base[k] for k, _ in changed])
-    shipped = N.STEPS
-    N.STEPS = steps  # decide_rows reads only the row's words; the switch matters for nothing else here
-    try:
-        off = decision_scores([row for _, row in changed], decide_rows([row for _, row in changed], tagger))
-    finally:
-        N.STEPS = shipped
+    off = decision_scores([row for _, row in changed], decide_rows([row for _, row in changed], tagger))  # its words
     n = len(changed)
     return {"rows": n, "right_on": round(on["accuracy"] * n), "right_off": round(off["accuracy"] * n),
             "wrong_on": round(on["wrong_action_rate"] * n), "wrong_off": round(off["wrong_action_rate"] * n)}
@@ -81,16 +84,12 @@ def hand_written_effect(directory: Path, step: Callable, tagger, base: dict) -> 
     field_set = read_field_set(directory, tagged=False)
     texts = [text for episode in field_set.episodes for text in episode["instructions"]]
     steps = without(step)
-    rows = sum(read_with(steps, t) != read_with(N.STEPS, t) for t in texts)
+    rows = sum(read_with(steps, t) != list(N.normalise(t).words) for t in texts)
     if not rows:
         return {"rows": 0, "right_on": base["right"], "right_off": base["right"], "wrong_on": base["wrong"],
                 "wrong_off": base["wrong"]}
-    shipped = N.STEPS
-    N.STEPS = steps
-    try:
+    with front_end_of(steps):
         off = played(directory, tagger)
-    finally:
-        N.STEPS = shipped
     return {"rows": rows, "right_on": base["right"], "right_off": off["right"], "wrong_on": base["wrong"],
             "wrong_off": off["wrong"]}
 

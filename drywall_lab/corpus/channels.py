@@ -22,13 +22,14 @@ keeping the meaning and carrying every word's tag along:
 - ``code_switch``: Spanish or German words and phrases mixed in ("la pila de la izquierda", "cuatro por ocho",
   "der mittlere Stapel"), from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``).
 
-The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides and the code switch back into the corpus's
-written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
+The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides and the code switch back into
+the corpus's written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
 training splits (``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction
 said in a way the tagger never met (first sight).
 """
 from __future__ import annotations
 
+import functools
 import random
 import re
 from typing import Callable
@@ -599,6 +600,7 @@ def plural_sizes(ch: Chooser, sentences: Sentences) -> Sentences:
 
 
 # --- code switch ---------------------------------------------------------------------------------------------
+@functools.lru_cache(maxsize=1)
 def _foreign_forms() -> dict[str, dict[tuple[str, ...], list[str]]]:
     """Language -> English words (a reading of the code-switch lexicon) -> the forms the front end reads as them."""
     from drywall_lab.nlu.normalise import read_code_switch
@@ -615,12 +617,12 @@ def _switched(ch: Chooser, sentence: Phrase, forms: dict[tuple[str, ...], list[s
     i = 0
     while i < len(sentence):
         run = sentence[i:i + longest]
+        english = [t.word.lower() for t in run]
         n = next((n for n in range(len(run), 0, -1) if all(t.is_word for t in run[:n])
-                  and len({(t.tag, t.coref) for t in run[:n]}) == 1
-                  and tuple(t.word.lower() for t in run[:n]) in forms), 0)
+                  and len({(t.tag, t.coref) for t in run[:n]}) == 1 and tuple(english[:n]) in forms), 0)
         if n and ch.chance(0.5):
-            spanish = ch.rng.choice(forms[tuple(t.word.lower() for t in run[:n])])
-            new += [Token(w, run[0].tag, run[0].coref) for w in spanish.split()]
+            said = ch.rng.choice(forms[tuple(english[:n])])
+            new += [Token(w, run[0].tag, run[0].coref) for w in said.split()]
             i += n
             continue
         new.append(sentence[i])

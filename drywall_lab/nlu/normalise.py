@@ -6,8 +6,8 @@ plural ("one of the 2x8s"), a board's sides in metric ("1200 x 2400", "600 mm wi
 hundred": the feet they stand for), the site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields
 separated by ``|`` or ``->``), spoken disfluency (fillers, stutters, a false start broken off with a dash and
 repaired: "the four by- no, the two by eight"), and Spanish or German words a crew mixes into English ("la pila de
-la izquierda", "cuatro por ocho", "der mittlere Stapel": ``data/lexicon/code_switch.tsv``). The paper's tagger (Sec. 3.1) learns surface forms from its
-corpus; a form it never met is a guess. This module reads every such form into one written form first, for training
+la izquierda", "cuatro por ocho", "der mittlere Stapel": ``data/lexicon/code_switch.tsv``). The paper's tagger
+(Sec. 3.1) learns surface forms from its corpus; a form it never met is a guess. This module reads every such form into one written form first, for training
 and prediction alike (``drywall_lab.corpus.field_generator`` writes its rows through it), so that a new voice
 reaches the tagger in words it knows.
 
@@ -127,14 +127,19 @@ def read_lexicon(path: Path | str = LEXICON_PATH) -> tuple[dict[str, str], dict[
     case (keys lower-cased)."""
     exact: dict[str, str] = {}
     any_case: dict[str, str] = {}
-    with open(path, encoding="utf-8") as f:
-        for number, row in enumerate(csv.reader((line for line in f if line.strip() and not line.startswith("#")),
-                                                delimiter="\t"), start=1):
-            if len(row) != 3 or row[2] not in ("exact", "any"):
-                raise ValueError(f"{path}: entry {number} must be FORM<TAB>READING<TAB>exact|any, not {row}")
-            form, reading, case = row
-            (exact if case == "exact" else any_case)[form if case == "exact" else form.lower()] = reading
+    for number, row in _tsv_entries(path):
+        if len(row) != 3 or row[2] not in ("exact", "any"):
+            raise ValueError(f"{path}: entry {number} must be FORM<TAB>READING<TAB>exact|any, not {row}")
+        form, reading, case = row
+        (exact if case == "exact" else any_case)[form if case == "exact" else form.lower()] = reading
     return exact, any_case
+
+
+def _tsv_entries(path: Path | str) -> list[tuple[int, list[str]]]:
+    """A lexicon file's entries, numbered from 1: its tab-separated lines, blank lines and ``#`` comments skipped."""
+    with open(path, encoding="utf-8") as f:
+        return list(enumerate(csv.reader((line for line in f if line.strip() and not line.startswith("#")),
+                                         delimiter="\t"), start=1))
 
 
 @lru_cache(maxsize=65536)
@@ -148,13 +153,11 @@ def read_code_switch(path: Path | str = CODE_SWITCH_PATH) -> tuple[tuple[str, st
     """The code-switch lexicon (``data/lexicon/code_switch.tsv``): (form, reading, language) as written, a reading
     of "" dropping its form."""
     entries = []
-    with open(path, encoding="utf-8") as f:
-        for number, row in enumerate(csv.reader((line for line in f if line.strip() and not line.startswith("#")),
-                                                delimiter="\t"), start=1):
-            if len(row) != 3 or not all(cell.strip() for cell in row):
-                raise ValueError(f"{path}: entry {number} must be FORM<TAB>READING<TAB>LANGUAGE, not {row}")
-            form, reading, language = (cell.strip() for cell in row)
-            entries.append((form, "" if reading == "-" else reading, language))
+    for number, row in _tsv_entries(path):
+        if len(row) != 3 or not all(cell.strip() for cell in row):
+            raise ValueError(f"{path}: entry {number} must be FORM<TAB>READING<TAB>LANGUAGE, not {row}")
+        form, reading, language = (cell.strip() for cell in row)
+        entries.append((form, "" if reading == "-" else reading, language))
     return tuple(entries)
 
 
@@ -240,8 +243,8 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
 
 def translate_code_switch(pieces: list[Piece], changes: list[Change],
                           lexicon: Path | str = CODE_SWITCH_PATH) -> list[Piece]:
-    """Words and phrases of another language mixed into an instruction read in English from the code-switch lexicon, the
-    longest form first ("la pila de la izquierda" -> "the pile on the left", "cuatro por ocho" -> "four by eight");
+    """Words and phrases of another language mixed into an instruction read in English from the code-switch lexicon,
+    the longest form first ("la pila de la izquierda" -> "the pile on the left", "cuatro por ocho" -> "four by eight");
     a filler ("pues") is dropped."""
     table = _code_switch_table(lexicon)
     longest = max(map(len, table))

@@ -34,6 +34,21 @@ TOLERANCE = 1e-6  #: metres; touching edges are not an overlap
 STACK_Y = 2.6
 
 DATA_DIR = Path(__file__).resolve().parent.parent / "data"
+SIZE_WORDS_PATH = DATA_DIR / "site" / "size_words.csv"
+SIZE_MEASURES = ("width", "length", "area")
+
+
+@lru_cache(maxsize=4)
+def size_words(path: Path | str = SIZE_WORDS_PATH) -> dict[str, tuple[str, str]]:
+    """Words that say a panel's size by a property, not a number (``data/site/size_words.csv``): word -> (measure,
+    "least" or "most"). "narrow" is the least width, "short" the least length, "big" the most area; which stack that
+    is, the site's sizes decide (``Site.stacks_with_extreme``)."""
+    table = pd.read_csv(path, dtype=str)
+    bad = table[~table["measure"].isin(SIZE_MEASURES) | ~table["extreme"].isin(("least", "most"))]
+    if len(bad) or table["word"].duplicated().any():
+        raise ValueError(f"{path}: each word once, measure one of {SIZE_MEASURES}, extreme least or most; "
+                         f"check {bad.to_dict('records') or table[table['word'].duplicated()]['word'].tolist()}")
+    return {r.word: (r.measure, r.extreme) for r in table.itertuples(index=False)}
 
 
 class Placement(str, Enum):
@@ -208,6 +223,17 @@ class Site:
     def sizes(self) -> dict[str, tuple[float, float]]:
         """Stack name -> (w, l) in feet."""
         return {name: self.stack_size(name) for name in STACK_NAMES}
+
+    def stacks_with_extreme(self, measure: str, extreme: str) -> list[str]:
+        """The stacks whose panels have the least or the most of a measure ("width", "length" or "area"): what a
+        size said by a property means ("the narrow one": the least width; ``size_words``). More than one stack when
+        they share it ("the wide one" on this site: the 4 x 8 and the 4 x 6)."""
+        def amount(size: tuple[float, float]) -> float:
+            return {"width": size[0], "length": size[1], "area": size[0] * size[1]}[measure]
+
+        amounts = {name: amount(size) for name, size in self.sizes.items()}
+        best = (min if extreme == "least" else max)(amounts.values())
+        return [name for name in STACK_NAMES if amounts[name] == best]
 
     @property
     def wall_end_x(self) -> float:

@@ -77,13 +77,29 @@ def test_a_sample_of_train_gives_its_expected_outcome_with_gold_tags(train):
     assert not wrong, wrong[:10]
 
 
+def test_sizes_said_by_a_property_change_only_their_own_rows(train):
+    """A row said by a property ("the narrow one") is said from the draws of the row it replaces: the split without
+    the channel is the same but for those rows, and each of them keeps its meaning and expected outcome."""
+    rows = train[:400]
+    monkeypatch = pytest.MonkeyPatch()
+    monkeypatch.setattr(FG, "SIZE_PROPERTY_RATE", 0.0)
+    try:
+        without = FG.generate_field_split("train", n=400)
+    finally:
+        monkeypatch.undo()
+    changed = [(a, b) for a, b in zip(rows, without) if a != b]
+    assert changed and all(FG.C.SIZE_PROPERTIES in a["channels"] for a, _ in changed)
+    assert all(a["expected"] == b["expected"] and a["meaning"] == b["meaning"] for a, b in changed)
+    assert all("dim" in a["tags"] and not {"width", "length"} & set(a["tags"]) for a, _ in changed)
+
+
 def test_rows_are_well_formed(committed, train):
     from drywall_lab.corpus.channels import CHANNELS
     from drywall_lab.nlu.normalise import normalise
 
     for row in [r for rows in committed.values() for r in rows] + train[::20]:
         assert row["words"] == list(normalise(row["text"]).words), row["id"]  # the text through the front end
-        assert set(row["channels"]) <= set(CHANNELS), row["id"]
+        assert set(row["channels"]) <= set(CHANNELS) | {FG.C.SIZE_PROPERTIES}, row["id"]
         assert len(row["tags"]) == len(row["words"]) == len(row["coref_tags"])
         assert set(row["tags"]) <= set(TAGS) and set(row["coref_tags"]) <= set(COREF_TAGS)
         assert row["register"] in FG.REGISTERS

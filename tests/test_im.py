@@ -183,6 +183,13 @@ TARGETS = [
     # ... but alone it is the last panel's size, and "same size as the last one" is always a back-reference
     ("another/dim one of those/dim", (("500321", "500100", "vertical_left"),), "500311"),
     ("same/dim size as the last/dim one", (("500321", "500100", "vertical_left"),), "500311"),
+    # a size said by a property: the size with the least or the most of it on this site (data/site/size_words.csv)
+    ("the narrow/dim one", (), "500321"),
+    ("a skinny/dim sheet", (("500321", "500100", "vertical_left"),), "500311"),
+    ("the short/dim panel", (), "500322"),
+    ("one of the big/dim ones", (), "500320"),
+    ("another/dim narrow/dim one", (("500320", "500100", "vertical_left"),), "500321"),  # one more of that size
+    ("the narrow/dim two-footer/width", (), "500321"),  # rule 2 first: the number agrees
 ]
 
 
@@ -233,6 +240,11 @@ TARGET_REFUSALS = [
     ("the 2/width by 8/length panel", (("500321", "500100", "vertical_left"), ("500311", "500102", "vertical_left"),
                                         ("500301", "500104", "vertical_left")), "stack_empty"),
     # "again" says one more of the same, never a stack to count away from
+    # a property two sizes share, or two words that name two sizes
+    ("the wide/dim one", (), "ambiguous_size"),
+    ("the long/dim panel", (), "ambiguous_size"),
+    ("the narrow/dim short/dim one", (), "ambiguous_size"),
+    ("a full/dim skinny/dim sheet", (), "ambiguous_size"),
 ]
 
 
@@ -261,6 +273,28 @@ def test_ambiguous_size_says_which_panels():
     with pytest.raises(Refusal) as info:
         resolve_target(tagged("the length is 8/length"), context())
     assert info.value.message == "'the length is 8' fits both the 4 x 8 and the 2 x 8 panels: which one?"
+
+
+def test_a_shared_property_says_which_sizes_share_it():
+    with pytest.raises(Refusal) as info:
+        resolve_target(tagged("the wide/dim one"), context())
+    assert info.value.message == ("'the wide' fits more than one size (4 x 8 and 4 x 6): which one? "
+                                  'Say it in feet ("the 4 by 8").')
+
+
+def test_a_property_is_read_from_the_sites_sizes():
+    """On a site whose narrowest panel lies in the right stack, "narrow" is the right stack: the word names a
+    property, the site's table decides the stack."""
+    from dataclasses import replace as changed
+
+    from drywall_lab.im.context import MappingContext
+    from drywall_lab.site import Site
+
+    site = Site.load()
+    widths = {"middle": 4.0, "right": 2.0}
+    site = changed(site, panels=tuple(changed(p, w_ft=widths.get(p.stack, p.w_ft)) for p in site.panels))
+    assert site.stacks_with_extreme("width", "least") == ["right"]
+    assert resolve_target(tagged("the narrow/dim one"), MappingContext(site=site, state=site.fresh())) == "500322"
 
 
 def test_not_on_top_says_what_is_above():

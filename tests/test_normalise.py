@@ -93,6 +93,10 @@ def test_a_side_said_in_words_keeps_the_workers_words_for_its_tag():
 @pytest.mark.parametrize("said, read", [
     ("PNL: 2x8 | STUD: 500106 | BTM", "panel 2x8 | STUD 500106 | bottom"),
     ("Stud:500104 -> vert w/ CL", "Stud 500104 -> vertical with centre line"),
+    # a program's fields: "=", brackets, "_" and a leading "--" glue words; alone they stay
+    ("place(panel=500321, stud=500100, edge=centre_line)", "place panel 500321 stud 500100 edge centre line"),
+    ("hang --stack middle --stud 500104", "hang stack middle stud 500104"),
+    ("stud = 500104", "stud = 500104"),
     ("2nd from R", "2nd from right"),
     ("one to the r of 500301", "one to the right of 500301"),
     ("u r fast", "u r fast"),  # a texted "are" is no side
@@ -191,8 +195,11 @@ def test_every_word_read_comes_from_the_workers_words_in_order(words):
     n = N.normalise(" ".join(words))
     assert n.said == tuple(tokenize(" ".join(words)))
     assert len(n.words) == len(n.sources)
-    flat = [i for sources in n.sources for i in sources]
-    assert flat == sorted(flat) and all(0 <= i < len(n.said) for i in flat)
+    # in order: a word read comes from no earlier words than the one before it (the words of a phrase read as a
+    # phrase, "la de" -> "the one", all come from the whole phrase)
+    assert all(0 <= i < len(n.said) for sources in n.sources for i in sources)
+    assert all(list(s) == sorted(s) for s in n.sources)
+    assert all(a[0] <= b[0] and a[-1] <= b[-1] for a, b in zip(n.sources, n.sources[1:]) if a and b)
     assert all(w and not w.isspace() for w in n.words)
     assert len(n.tags_of_said(["O"] * len(n.words))) == len(n.said)
 

@@ -679,12 +679,55 @@ def openers(ch: Chooser, sentences: Sentences) -> Sentences:
     return [opener + sentences[0], *sentences[1:]] if sentences else sentences
 
 
+# --- glued fields -------------------------------------------------------------------------------------------
+#: Words that name the field a value fills, glued to the value in a form or a program ("stud=500104", "panel:500321").
+FIELD_LABELS = frozenset({"stud", "panel", "sheet", "board", "pile", "stack", "row", "size", "edge", "line", "id"})
+
+
+def _glued_runs(sentence: Phrase) -> Phrase:
+    """Each run of two or more words of one tag as one word joined by "_" ("centre_line", "five_oh_oh_one_oh_four")."""
+    out: Phrase = []
+    for tok in sentence:
+        last = out[-1] if out else None
+        if (tok.is_word and tok.tag not in (None, "O") and last is not None and last.is_word
+                and (last.tag, last.coref) == (tok.tag, tok.coref)):
+            out[-1] = Token(f"{last.word}_{tok.word}", tok.tag, tok.coref)
+        else:
+            out.append(tok)
+    return out
+
+
+def glued_fields(ch: Chooser, sentences: Sentences) -> Sentences:
+    """Typed as a program or a terse form is: each run of words of one tag joined by "_" ("centre_line"), and a field's
+    label glued to the value after it by "=" or ":" ("stud=500104", "size=2x8"; the label takes the value's tag). The
+    front end's ``split_fields`` takes them apart again."""
+    glue = ch.rng.choice(["=", "=", ":"])
+    out: Sentences = []
+    for sentence in sentences:
+        runs = _glued_runs(sentence) if ch.chance(0.7) else list(sentence)
+        new: Phrase = []
+        for tok in runs:
+            last = new[-1] if new else None
+            if (last is not None and last.is_word and last.tag in (None, "O") and last.word.lower() in FIELD_LABELS
+                    and tok.is_word and tok.tag not in (None, "O")):
+                new[-1] = Token(f"{last.word}{glue}{tok.word}", tok.tag, tok.coref)
+            else:
+                new.append(tok)
+        out.append(new)
+    return out
+
+
 CHANNELS: dict[str, Channel] = {
     "restated_studs": restated_studs, "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk,
     "spoken_ids": spoken_ids, "shorthand": shorthand,
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
-    "code_switch": code_switch, "openers": openers,
+    "code_switch": code_switch, "openers": openers, "glued_fields": glued_fields,
 }
+#: A row whose target is said by a property ("the narrow one") instead of its size, in every split: drawn where the
+#: target is said (``field_generator.size_property_draw``), so not a function of sentences; a row records it like one.
+SIZE_PROPERTIES = "size_properties"
+#: Every name a row's ``channels`` may hold.
+CHANNEL_NAMES: tuple[str, ...] = (*CHANNELS, SIZE_PROPERTIES)
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
 CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, "relative_talk": 0.35,
                                    "spoken_ids": 0.15, "shorthand": 0.12, "disfluency": 0.15, "asides": 0.15,
@@ -693,7 +736,7 @@ CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, 
 HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: Held back whole and laid over the novel split's instructions at this rate, on top of their held-back channel or pair,
 #: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
-HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15}
+HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))

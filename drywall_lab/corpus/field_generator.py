@@ -204,11 +204,30 @@ class Pieces:
     bare_stacks: bool = False  #: a stack may be named by its side alone (where a key or a line says it is the panel)
     count_last: float = 0.0  #: chance that a relative stud position gives its count after the anchor (non-native)
     stud_ids: tuple[str, ...] = ()  #: the wall's studs, left to right: a stud id may come with its position too
+    #: The size said by a property instead ("the narrow one"; ``size_property_words``): its own draws and its words.
+    size_property: tuple[Chooser, tuple[str, ...]] | None = None
+    said_property: bool = False  #: whether the target was said by a property
 
     def noun(self) -> Phrase:
-        return words_of(self.ch, F.PANEL_NOUNS)
+        return self.noun_of(self.ch)
 
     def target(self, terse: bool = False, ref: G.TargetRef | None = None) -> Phrase:
+        """The target as said; the meant target said by a property when ``size_property`` is set (drawn after
+        the words it replaces, so the split's own draws are those it would make without it)."""
+        phrase = self._target(terse, ref)
+        if self.size_property is None or ref not in (None, self.meaning.target):
+            return phrase
+        ch, words = self.size_property
+        self.said_property = True
+        slots = {"noun": self.noun_of(ch), "plural": words_of(ch, F.PANEL_NOUNS_PLURAL),
+                 "prop": tagged(ch.rng.choice(words), "dim")}
+        return ch.say(F.TARGET_PROPERTY_TERSE if terse else F.TARGET_PROPERTY, **slots)
+
+    @staticmethod
+    def noun_of(ch: Chooser) -> Phrase:
+        return words_of(ch, F.PANEL_NOUNS)
+
+    def _target(self, terse: bool = False, ref: G.TargetRef | None = None) -> Phrase:
         ch, ref = self.ch, ref or self.meaning.target
         slots = {"noun": self.noun(), "idnoun": words_of(ch, F.ID_NOUNS), "plural": words_of(ch, F.PANEL_NOUNS_PLURAL),
                  "stack": plain(ch.rng.choice(F.STACK_NOUNS))}
@@ -414,10 +433,12 @@ class Speaker:
     ep: G.Episode
     register: str = "formal"
 
+    size_property: tuple[Chooser, tuple[str, ...]] | None = None  #: see ``Pieces.size_property``
+
     def __post_init__(self) -> None:
         self.p = Pieces(self.ch, self.meaning, read_out_ids=0.3 if self.register in ("radio", "speech") else 0.0,
                         count_last=0.35 if self.register == "non_native" else 0.03,
-                        stud_ids=tuple(self.ep.state.site.stud_ids))
+                        stud_ids=tuple(self.ep.state.site.stud_ids), size_property=self.size_property)
 
     # words
     def w(self, bank: list[str]) -> Phrase:
@@ -1144,28 +1165,71 @@ def read_through_front_end(said: tuple[str, list[str], list[str], list[str]]) ->
     return text, list(read.words), read.tags_of_words(tags), read.tags_of_words(coref)
 
 
+# --- sizes said by a property --------------------------------------------------------------------------
+#: How often a target meant by its size ("the 2x8", "a full sheet", "the six-footer") is said by a property instead
+#: ("the narrow one", "a big sheet", "the short panel"), in every split, drawn apart from the split's own draws.
+SIZE_PROPERTY_RATE = 0.12
+_SIZE_KINDS = ("size", "width", "length", "standard")
+
+
+def size_property_words(site: Site, stack: str) -> tuple[str, ...]:
+    """The words of ``data/site/size_words.csv`` that name ``stack`` alone on this site ("narrow": the least width
+    is the 2 x 8's and no other's); none for a stack whose every property another stack shares."""
+    from drywall_lab.site import size_words
+
+    return tuple(word for word, (measure, extreme) in size_words().items()
+                 if site.stacks_with_extreme(measure, extreme) == [stack])
+
+
+def size_property_draw(row_id: str, split: str, meaning: G.Meaning, site: Site) -> tuple[Chooser, tuple[str, ...]] | None:
+    """The draws and words for saying this row's target by a property, or None: only a command whose target is
+    meant by its size, one row in ``1 / SIZE_PROPERTY_RATE``, drawn from the row's id alone."""
+    if meaning.target.kind not in _SIZE_KINDS or meaning.expected.get("refusal") is not None:
+        return None
+    ch = Chooser(random.Random(f"{row_id}-size_properties"), novel=split == "novel")
+    words = size_property_words(site, site.panel(meaning.expected["drywall_id"]).stack)
+    return (ch, words) if words and ch.chance(SIZE_PROPERTY_RATE) else None
+
+
 # --- episodes and splits ------------------------------------------------------------------------------
 def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict]:
     ch = Chooser(rng, novel=(split == "novel"))
 
-    def say(ep: G.Episode, meaning: G.Meaning, row_no: int, episode_no: int, step: int) -> dict | None:
-        """One step in a register, with noise and channels, read through the front end (None: no words left)."""
+    def said(ep: G.Episode, meaning: G.Meaning, row_id: str, prop: tuple[Chooser, tuple[str, ...]] | None):
+        """One step in a register, with noise and channels, read through the front end."""
         register = G._weighted(rng, REGISTERS)
         spoken = register in ("speech", "texting") or (register in ("radio", "correction") and rng.random() < 0.5) \
             or (register in ("explain", "boss") and rng.random() < 0.3)
-        sentences = Speaker(ch, meaning, ep, register).sentences()
+        speaker = Speaker(ch, meaning, ep, register, size_property=prop)
+        sentences = speaker.sentences()
         sentences = add_noise(ch, sentences, spoken)
         if register == "texting":
             sentences = texting_forms(ch, sentences)
         channels = C.choose_channels(rng, novel=split == "novel")
         sentences = C.apply_channels(ch, sentences, channels)
+        if speaker.p.said_property:
+            channels += (C.SIZE_PROPERTIES,)
         if split == "novel":
-            sentences, overlays = C.apply_overlays(f"field-{split}-{row_no:05d}", sentences)
+            sentences, overlays = C.apply_overlays(row_id, sentences)
             channels += overlays
-        said = read_through_front_end(render(ch, sentences, spoken, shout=register == "boss"))
-        if not said[1]:
+        return register, channels, len(sentences), read_through_front_end(render(ch, sentences, spoken,
+                                                                                 shout=register == "boss"))
+
+    def say(ep: G.Episode, meaning: G.Meaning, row_no: int, episode_no: int, step: int) -> dict | None:
+        """One step (None: no words left). A step said by a property is said twice from the same draws, without it
+        and with it, and the split goes on from the first: every other row is what it is without the channel."""
+        row_id = f"field-{split}-{row_no:05d}"
+        start = rng.getstate()
+        register, channels, n_sentences, words = said(ep, meaning, row_id, None)
+        prop = size_property_draw(row_id, split, meaning, site)
+        if prop is not None and words[1]:
+            end = rng.getstate()
+            rng.setstate(start)
+            register, channels, n_sentences, words = said(ep, meaning, row_id, prop)
+            rng.setstate(end)
+        if not words[1]:
             return None
-        return G.corpus_row(f"field-{split}-{row_no:05d}", said, len(sentences), f"field-{split}-ep{episode_no:05d}",
+        return G.corpus_row(row_id, words, n_sentences, f"field-{split}-ep{episode_no:05d}",
                             step, ep, meaning, register=register, channels=list(channels))
 
     return G.episode_rows(rng, site, n, lambda: rng.randint(1, 8), FIELD_REFUSAL_RATE, FIELD_WEIGHTS, say)

@@ -219,6 +219,14 @@ STANDARD_WORDS = [
     "standard/dim size/dim", "regular/dim", "regular/dim size/dim", "normal/dim", "normal/dim size/dim",
     "full-sized/dim", "whole/dim", "fullsize/dim", "standard-size/dim",
 ]
+#: A size said by a property: {prop} is a word of ``data/site/size_words.csv`` that names one stack on the site,
+#: tagged dim ("the narrow/dim one", "a big/dim sheet"; guidelines 3, dim).
+TARGET_PROPERTY = [
+    "the {prop} {noun}", "a {prop} {noun}", "the {prop} one", "a {prop} one", "one of the {prop} {plural}",
+    "one of the {prop} ones", "the {prop} {noun}", "~the {prop} {noun} there", "~one of those {prop} ones",
+    "~a nice {prop} one",
+]
+TARGET_PROPERTY_TERSE = ["{prop}", "{prop} {noun}", "{prop} one", "the {prop} one"]
 #: The size of the last installed panel: tagged dim (guidelines 3, dim; 4.7 for "another", "the pile the last one came from").
 TARGET_SAME = [
     "the same/dim as last/dim time/dim", "same/dim as before/dim", "the same/dim kind as before/dim",

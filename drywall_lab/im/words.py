@@ -321,6 +321,13 @@ def standard_size_words(words: Iterable[str]) -> list[str]:
     return [w for w in words if normalise(w) in STANDARD_SIZE_WORDS]
 
 
+def property_size_words(words: Iterable[str]) -> list[str]:
+    """The words that say a size by a property ("narrow", "skinny", "short", "big"; ``site.size_words``)."""
+    from drywall_lab.site import size_words as table
+
+    return [w for w in words if normalise(w) in table()]
+
+
 def size_words(words: Iterable[str]) -> list[str]:
     """The generic size words ("size", "sized"): a size is meant, but they do not say which."""
     return [w for w in words if normalise(w) in SIZE_WORDS]

@@ -187,11 +187,11 @@ def scores_by_channel(rows: Sequence[dict], decisions: Sequence) -> "pd.DataFram
     ``none``: the rows that went through none), one line a channel: n, acc_decided, wrong_action_rate."""
     import pandas as pd
 
-    from drywall_lab.corpus.channels import CHANNELS
+    from drywall_lab.corpus.channels import CHANNEL_NAMES
     from drywall_lab.decision import decision_scores
 
     lines = []
-    for name in ("none", *CHANNELS):
+    for name in ("none", *CHANNEL_NAMES):
         picked = [(r, d) for r, d in zip(rows, decisions) if (name in r["channels"] if name != "none" else not r["channels"])]
         if picked:
             scores = decision_scores([r for r, _ in picked], [d for _, d in picked])

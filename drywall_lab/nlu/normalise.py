@@ -62,7 +62,9 @@ _DIGITS = re.compile(r"^\d+$")
 _SPLIT_ID = re.compile(r"^(\d{3})[-–.,](\d{3})$")
 _MARKED_ID = re.compile(r"^(?:#|no\.?|nr\.?|num\.?)(5\d{5})$", re.I)
 _BROKEN_OFF = re.compile(r"[\w'][-–—]+$")
-_FIELD_SEPARATORS = re.compile(r"\s*(?:\||->|=>|→|⇒|—>|:(?=\S))\s*")
+#: What glues a form's or a program's fields into one word: "|", arrows, a colon before text, "=", brackets, "_", a
+#: leading "--" ("Stud:500104", "2x8->500106", "place(stud=500104", "centre_line", "--stack").
+_FIELD_SEPARATORS = re.compile(r"\s*(?:\||->|=>|→|⇒|—>|:(?=\S)|=|[()\[\]{}]|_|^--)\s*")
 _PLURAL_SIZE = re.compile(r"^(.*?(?:\d|one|two|three|four|five|six|seven|eight|nine|ten|twelve)'?)(?:'?s|es)$", re.I)
 _SIZE_WORD = re.compile(r"(?:\d|four|two|six|eight)'?\s*(?:x|by|-by-)", re.I)
 
@@ -181,8 +183,9 @@ def _text(pieces: Sequence[Piece], said: Sequence[str]) -> str:
 
 
 def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
-    """A form's fields glued by a separator ("Stud:500104", "2x8->500106") are two words. A separator said alone
-    ("|", "->") stays: the IM reads it as punctuation, a boundary between fields."""
+    """A form's or a program's fields glued by a separator ("Stud:500104", "2x8->500106", "stud=500104",
+    "place(panel", "centre_line") are words apart. A separator said alone ("|", "->", "=") stays: the IM reads it as
+    punctuation, a boundary between fields."""
     out: list[Piece] = []
     for p in pieces:
         if not _FIELD_SEPARATORS.search(p.word) or not any(c.isalnum() for c in p.word):

@@ -35,14 +35,14 @@ STACK_Y = 2.6
 
 DATA_DIR = Path(__file__).resolve().parent.parent / "data"
 SIZE_WORDS_PATH = DATA_DIR / "site" / "size_words.csv"
-SIZE_MEASURES = ("width", "length", "area")
+SIZE_MEASURES = ("width", "length")
 
 
 @lru_cache(maxsize=4)
 def size_words(path: Path | str = SIZE_WORDS_PATH) -> dict[str, tuple[str, str]]:
     """Words that say a panel's size by a property, not a number (``data/site/size_words.csv``): word -> (measure,
-    "least" or "most"). "narrow" is the least width, "short" the least length, "big" the most area; which stack that
-    is, the site's sizes decide (``Site.stacks_with_extreme``)."""
+    "least" or "most"). "narrow" is the least width, "short" the least length; which stack that is, the site's sizes
+    decide (``Site.stacks_with_extreme``). "big" and "small" say no measure, and are not in it."""
     table = pd.read_csv(path, dtype=str)
     bad = table[~table["measure"].isin(SIZE_MEASURES) | ~table["extreme"].isin(("least", "most"))]
     if len(bad) or table["word"].duplicated().any():
@@ -225,13 +225,10 @@ class Site:
         return {name: self.stack_size(name) for name in STACK_NAMES}
 
     def stacks_with_extreme(self, measure: str, extreme: str) -> list[str]:
-        """The stacks whose panels have the least or the most of a measure ("width", "length" or "area"): what a
-        size said by a property means ("the narrow one": the least width; ``size_words``). More than one stack when
-        they share it ("the wide one" on this site: the 4 x 8 and the 4 x 6)."""
-        def amount(size: tuple[float, float]) -> float:
-            return {"width": size[0], "length": size[1], "area": size[0] * size[1]}[measure]
-
-        amounts = {name: amount(size) for name, size in self.sizes.items()}
+        """The stacks whose panels have the least or the most of a measure ("width" or "length"): what a size said by
+        a property means ("the narrow one": the least width; ``size_words``). More than one stack when they share it
+        ("the wide one" on this site: the 4 x 8 and the 4 x 6)."""
+        amounts = {name: size[SIZE_MEASURES.index(measure)] for name, size in self.sizes.items()}
         best = (min if extreme == "least" else max)(amounts.values())
         return [name for name in STACK_NAMES if amounts[name] == best]
 

@@ -187,7 +187,6 @@ TARGETS = [
     ("the narrow/dim one", (), "500321"),
     ("a skinny/dim sheet", (("500321", "500100", "vertical_left"),), "500311"),
     ("the short/dim panel", (), "500322"),
-    ("one of the big/dim ones", (), "500320"),
     ("another/dim narrow/dim one", (("500320", "500100", "vertical_left"),), "500321"),  # one more of that size
     ("the narrow/dim two-footer/width", (), "500321"),  # rule 2 first: the number agrees
 ]
@@ -245,6 +244,7 @@ TARGET_REFUSALS = [
     ("the long/dim panel", (), "ambiguous_size"),
     ("the narrow/dim short/dim one", (), "ambiguous_size"),
     ("a full/dim skinny/dim sheet", (), "ambiguous_size"),
+    ("one of the big/dim ones", (), "undetermined"),  # "big" says no measure: the robot asks which size
 ]
 
 

@@ -145,6 +145,8 @@ def test_the_alignment_gives_the_workers_words_their_tags_and_the_trace_says_wha
     ("la misma size, dos studs a la izquierda del anterior", "the same size two studs to the left of the previous one"),
     ("nimm die Platte vom linken Stapel, hochkant auf Ständer 500103", "take the panel from the left pile upright on stud 500103"),
     ("eine schmale, quer in der unteren Reihe, ab dem ersten Staender", "a narrow lying flat in the bottom row from the first stud"),
+    ("pogne une feuille quatre par huit pis mets-la debout", "grab a sheet four by eight and put it upright"),
+    ("sur le montant cinq zéro zéro un zéro six", "on the stud 500106"),  # "zéro" is "zero", "un" one
 ])
 def test_another_language_mixed_in_is_read_in_english(said, read):
     assert N.normalise_text(said) == read

@@ -219,9 +219,12 @@ class Pieces:
             return phrase
         ch, words = self.size_property
         self.said_property = True
-        slots = {"noun": self.noun_of(ch), "plural": words_of(ch, F.PANEL_NOUNS_PLURAL),
-                 "prop": tagged(ch.rng.choice(words), "dim")}
-        return ch.say(F.TARGET_PROPERTY_TERSE if terse else F.TARGET_PROPERTY, **slots)
+        word = ch.rng.choice(words)
+        slots = {"noun": self.noun_of(ch), "plural": words_of(ch, F.PANEL_NOUNS_PLURAL), "prop": tagged(word, "dim")}
+        bank = F.TARGET_PROPERTY_TERSE if terse else F.TARGET_PROPERTY
+        if word.endswith("est"):  # "the narrowest one", never "a narrowest one"
+            bank = [t for t in bank if not t.lstrip("~").startswith("a ")]
+        return ch.say(bank, **slots)
 
     @staticmethod
     def noun_of(ch: Chooser) -> Phrase:
@@ -1167,7 +1170,7 @@ def read_through_front_end(said: tuple[str, list[str], list[str], list[str]]) ->
 
 # --- sizes said by a property --------------------------------------------------------------------------
 #: How often a target meant by its size ("the 2x8", "a full sheet", "the six-footer") is said by a property instead
-#: ("the narrow one", "a big sheet", "the short panel"), in every split, drawn apart from the split's own draws.
+#: ("the narrow one", "a skinny sheet", "the short panel"), in every split, drawn apart from the split's own draws.
 SIZE_PROPERTY_RATE = 0.12
 _SIZE_KINDS = ("size", "width", "length", "standard")
 

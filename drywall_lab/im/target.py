@@ -7,8 +7,8 @@ Five rules, tried in order; the first that applies decides:
    width A, length B; tried turned when nothing matches as said; a single number
    that fits two sizes is ambiguous.
 3. ``dim``: a size word ("full-size", "standard", "regular size") is the standard 4 x 8; a
-   property ("the narrow one", "the short one", "a big sheet"; ``data/site/size_words.csv``) is
-   the size with the least or the most of a width, a length or an area, ambiguous when two
+   property ("the narrow one", "the short one"; ``data/site/size_words.csv``) is the size
+   with the least or the most of a width or a length, ambiguous when two
    sizes share it ("the wide one"); a back-reference ("same as the previous one") is the size of the last installed panel. A
    lone "size" or "sized" names no size: the rule does not apply; nor does a word that only
    points back ("another", "one of those") when other words name the panel ("another 2x8").

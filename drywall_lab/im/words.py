@@ -322,7 +322,7 @@ def standard_size_words(words: Iterable[str]) -> list[str]:
 
 
 def property_size_words(words: Iterable[str]) -> list[str]:
-    """The words that say a size by a property ("narrow", "skinny", "short", "big"; ``site.size_words``)."""
+    """The words that say a size by a property ("narrow", "skinny", "short"; ``site.size_words``)."""
     from drywall_lab.site import size_words as table
 
     return [w for w in words if normalise(w) in table()]

@@ -308,7 +308,7 @@ def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 def _number_parts(word: str) -> list[str] | None:
     """The parts of a word that belongs to a spoken or split number ("one-oh-eight" -> ["one", "oh", "eight"]),
     or None."""
-    w = word.lower()
+    w = fold(word)  # "zéro" is "zero"
     if _DIGITS.match(w) or w in DIGIT_WORDS or w in TEEN_WORDS or w in TENS_WORDS or w in REPEATS or w == "hundred":
         return [w]
     marked = _MARKED_ID.match(w)

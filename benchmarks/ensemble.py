@@ -4,8 +4,8 @@ The candidates: each seed model of the shipped recipe (``benchmarks/field_seeds.
 ``build/field_seeds/seed<N>``) alone, and the ensemble of every two or more of them
 (``drywall_lab.nlu.ensemble.CrfEnsembleTagger``: the members' CRF scores averaged; ``seed0+seed1``). Each is scored where the field sets play no part, as the decision layer's
 thresholds were chosen (``benchmarks/decision.py``): the decision cost (``WRONG_ACTION_COST`` x wrong-action rate
-+ over-refusal rate, the mean over the generated field corpus's validation and novel splits, the episodes played
-as ``run`` plays them, at ``DEFAULT_SETTINGS``) and the paper corpus's test split's Acc_inst (the issue's 99.4%
++ over-refusal rate, the mean over the generated field corpus's validation and novel splits and the paper corpus's
+novel split, the episodes played as ``run`` plays them, at ``DEFAULT_SETTINGS``) and the paper corpus's test split's Acc_inst (the issue's 99.4%
 target). The shipped tagger is the candidate of least cost among those that keep the target
 (``drywall_lab.nlu.field_study.DEFAULT_ENSEMBLE_SEEDS``, which ``make default-tagger`` trains and combines;
 tested against this file). The hand-written field sets are
@@ -41,6 +41,11 @@ ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results" / "ensemble.md"
 MEMBERS = [ROOT / "build" / "field_seeds" / f"seed{seed}" for seed in (0, 1, 2)]
 ACC_INST_TARGET = 0.994
+#: The generated splits whose mean decision cost chooses: the decision's (``decision.SPLITS``, the field corpus's
+#: validation and novel splits) and the paper corpus's novel split, a register held back from its training (added on
+#: 2026-12-06, after the choice on the field splits alone, seeds 0 and 1, misread that register: "second one to the
+#: left" as "one to the left", 3% to 4% wrong actions on it, against 1.5% for seeds 0 and 2 and none for 1 and 2).
+CHOICE_SPLITS = (*SPLITS, "novel")
 QUICK = 150
 
 
@@ -51,10 +56,10 @@ def shown(path: Path) -> str:
 
 
 def generated_figures(tagger, limit: int | None) -> dict[str, float]:
-    """Per generated split (``decision.SPLITS``) the decision layer's rates at ``DEFAULT_SETTINGS``, their mean
+    """Per generated split (``CHOICE_SPLITS``) the decision layer's rates at ``DEFAULT_SETTINGS``, their mean
     cost, and the paper corpus's test split's Acc_inst."""
     out, costs = {}, []
-    for split in SPLITS:
+    for split in CHOICE_SPLITS:
         rows = split_rows(split)[:limit]
         scores = decision_scores(rows, Readings(rows, tagger, DEFAULT_SETTINGS.k).decide(DEFAULT_SETTINGS))
         costs.append(cost(scores))
@@ -114,14 +119,14 @@ def main(argv: list[str] | None = None) -> int:
         print(name, {k: round(v, 4) for k, v in rows[name].items()}, flush=True)
     table = pd.DataFrame(rows).T
     chosen = choose(table)
-    generated = [c for c in table.columns if c.split(" ")[0] in (*SPLITS, "cost", "test")]
+    generated = [c for c in table.columns if c.split(" ")[0] in (*CHOICE_SPLITS, "cost", "test")]
     field = [c for c in table.columns if c not in generated]
     summary = [f"{name}_cost={table.loc[name, 'cost']:.4f}" for name in table.index] + [f"chosen={chosen}"]
     lines = ["# One seed model or their ensemble (`benchmarks/ensemble.py`)", "",
              f"**Command:** `{command_line('ensemble.py', (argv if argv is not None else sys.argv[1:]))}`", "",
              f"**Members:** {', '.join(shown(m) for m in members)}", "", *machine.markdown_lines(),
              f"- wall time: {(time.perf_counter() - started) / 60:.1f} min", "",
-             f"The choice: least `cost` (10 x wrong-action rate + over-refusal rate, mean over {' and '.join(SPLITS)}, "
+             f"The choice: least `cost` (10 x wrong-action rate + over-refusal rate, mean over {', '.join(CHOICE_SPLITS)}, "
              f"at the decision layer's default settings) among the candidates whose `test acc_inst` is "
              f"{ACC_INST_TARGET} or more. Generated splits, where the field sets play no part:", "",
              "```", table[generated].T.to_string(float_format=lambda x: f"{x:.4f}"), "```", "",

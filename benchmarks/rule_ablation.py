@@ -150,6 +150,9 @@ REGISTRY: tuple[Rule, ...] = (
          "T3 (spec): 'same as the previous one' is the last panel's size (a control: a spec rule)", "target"),
     Rule("standard_size_words", W, "standard_size_words", _empty_list, "returns []",
          "T3 (spec): 'full-size', 'standard' is the 4 x 8 (a control: a spec rule)", "target"),
+    Rule("property_size_words", W, "property_size_words", _empty_list, "returns []",
+         "T3: a size said by a property ('the narrow one', 'the short one') is the size with the least or the most "
+         "of that measure on the site", "target"),
     Rule("points_back", W, "points_back", _false, "returns False",
          "T5 and S3: an anchor that points back ('previous', 'that one') is the last command's stack or stud",
          "target"),
@@ -168,8 +171,6 @@ REGISTRY: tuple[Rule, ...] = (
     Rule("two_meanings", D, "two_meanings", _none, "returns None",
          "words naming two panels or studs give the other meaning as a candidate, as likely as the first",
          "decision"),
-    Rule("centre_unread", D, "centre_unread", _false, "returns False",
-         "feature centre_unread: the default placement although an untagged word says centre", "decision"),
     # step 5, in episodes only
     Rule("had_it_been_done", D, "had_it_been_done", _none, "returns None",
          "an instruction is read against the histories an unanswered question leaves, each as likely",
@@ -179,7 +180,7 @@ REGISTRY: tuple[Rule, ...] = (
          "resolve stays open with the commands it may have meant",
          "episode"),
 )
-QUICK_RULES = ("stack_place", "two_meanings", "centre_unread", "points_back", "had_it_been_done")
+QUICK_RULES = ("stack_place", "two_meanings", "points_back", "had_it_been_done")
 
 UNSWITCHABLE: tuple[Unswitchable, ...] = (
     Unswitchable("the decision's features", "decision.DecisionSettings.off",

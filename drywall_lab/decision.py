@@ -20,7 +20,7 @@ action history, and decides in one step:
    ``FEATURES`` lists the features; their weights are fitted on generated episodes only (``fit_weights`` for the
    likelihood of the intended outcome, then ``tune_weights`` for the least cost of the decisions, by
    ``benchmarks/decision.py``), never on the hand-written sets. Switching a feature off is one line:
-   ``replace(settings, off=("centre_unread",))``.
+   ``replace(settings, off=("site_refusal",))``.
 3. **Least expected cost** (``DecisionCosts``, written down: a wrong move costs 10, a refusal of a meant command
    1, a question ``ask``)::
 
@@ -72,7 +72,6 @@ FEATURES = {
     "undetermined": "the rules cannot make a command of the reading (a part missing)",
     "site_refusal": "the site refuses the reading's command (overlap, buried panel, unknown id, ...)",
     "refusal_log_probability": "a refusal's log-probability again (a refusal's probability weighs otherwise)",
-    "centre_unread": "the reading leaves the placement to the default although a word it leaves untagged says centre",
     "beyond_k_best": "'none of these': the log of the probability the k best readings leave over",
 }
 
@@ -160,8 +159,8 @@ BEST_PATH = DecisionSettings(k=1, costs=DecisionCosts(wrong=0.0, refuse=1.0, ask
 #: corpus's validation split for the shipped tagger (``benchmarks/results/decision.md``; a test checks that they are
 #: the recorded ones).
 DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
-    log_probability=1.2086, undetermined=-5.3624, site_refusal=-5.7336, refusal_log_probability=0.5851,
-    centre_unread=0.9561, beyond_k_best=2.4546),
+    log_probability=1.6155, undetermined=-2.3748, site_refusal=-2.1812, refusal_log_probability=0.5725,
+    beyond_k_best=2.4355),
     costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
 
 
@@ -348,19 +347,6 @@ def two_meanings(outcome: Outcome, words: Sequence[str], tags: Sequence[str],
     return None
 
 
-#: Words that say the centre line when no placement tag reads them ("centred on the upright", "in the middle of the
-#: stud"); a stack or a stud named by its middle carries its own tag.
-CENTRE_WORDS = W.MIDDLE_WORDS | {"centred", "centered", "centreline", "centerline"}
-
-
-def centre_unread(words: Sequence[str], tags: Sequence[str]) -> bool:
-    """Whether a reading takes the default placement (no placement tag) although a word it leaves untagged says the
-    centre line."""
-    if set(PLACEMENT_TAGS).intersection(tags):
-        return False
-    return any(tag in W.UNTAGGED and W.normalise(w) in CENTRE_WORDS for w, tag in zip(words, tags))
-
-
 # --- step 1: the candidates and their features ---------------------------------------------------------------
 _INDEX = {name: i for i, name in enumerate(FEATURES)}
 
@@ -380,8 +366,7 @@ def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHi
     builds on a step not carried out), scored without the ``site_refusal`` feature of a misreading."""
     outcome = reading.outcome
     tags = reading.read_tags
-    base = dict(log_probability=reading.logprob,
-                centre_unread=float(outcome[0] == "command" and centre_unread(words, tags)))
+    base = dict(log_probability=reading.logprob)
     if outcome[0] == "refusal":
         kind = "undetermined" if outcome[1] == "undetermined" else "site_refusal"
         return [Candidate(outcome, _features(**base, **{kind: 1.0}, refusal_log_probability=reading.logprob),

@@ -13,7 +13,7 @@ import pytest
 from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, FEATURES, DecisionCosts, DecisionSettings, _weights,
-                                  centre_unread, completions, conformal_floor, decide, decide_episode, decide_rows,
+                                  completions, conformal_floor, decide, decide_episode, decide_rows,
                                   decide_tags, decision_scores, expected_costs, fit_weights, outcome_of,
                                   play_episode, question_between, step_outcome, truth_mask,
                                   tune_weights, two_meanings)
@@ -464,19 +464,6 @@ def test_a_half_understood_refusal_may_have_meant_what_a_rival_read():
     assert ("command", "500320", "500103", "vertical_left") not in completions(d, history, "said", 0.0)
 
 
-def test_a_centre_word_left_unread_is_weighed_by_its_feature():
-    """"centred on the upright" with no placement tag read: the default placement although an untagged word says
-    centre (``centre_unread``). Weighed down, the reading that reads the centre line carries it; a stack or a stud
-    named by its middle carries its own tag and does not count."""
-    words, read = _wt("put the 2x8/width on 500104/ID_stud centred/Vr_md on the upright")
-    unread = ["O" if t == "Vr_md" else t for t in read]
-    assert centre_unread(words, unread) and not centre_unread(words, read)
-    assert not centre_unread(*_wt("one from the middle/Dw_loc1 pile on 500104/ID_stud"))
-    kbest = [(unread, math.log(0.6)), (read, math.log(0.4))]
-    d = decide(words, kbest, _sure(unread), TAGS, settings=replace(PLAIN, weights=_weights(centre_unread=-6.0)))
-    assert d.action == "recover" and d.command.placement.value == "vertical_middle"
-
-
 def test_expected_costs_follow_the_formula():
     a, b, c = (("command", "500320", s, "vertical_left") for s in ("500100", "500104", "500108"))
     costs, best, options = expected_costs({a: 0.5, b: 0.3, c: 0.1, ("refusal", "overlap"): 0.1},
@@ -495,11 +482,11 @@ def test_fit_weights_finds_the_weight_the_data_call_for():
     names = list(FEATURES)
     x = np.zeros((2, len(names)))
     x[0, names.index("log_probability")], x[1, names.index("log_probability")] = math.log(0.6), math.log(0.4)
-    x[1, names.index("centre_unread")] = 1.0
+    x[1, names.index("site_refusal")] = 1.0
     up = dict(fit_weights([(x, np.array([False, True]))] * 20, l2=0.001))
     down = dict(fit_weights([(x, np.array([True, False]))] * 20, l2=0.001))
-    assert up["centre_unread"] > 2 and down["centre_unread"] < -2
-    assert dict(fit_weights([(x, np.array([False, True]))] * 20, off=("centre_unread",)))["centre_unread"] == 0.0
+    assert up["site_refusal"] > 2 and down["site_refusal"] < -2
+    assert dict(fit_weights([(x, np.array([False, True]))] * 20, off=("site_refusal",)))["site_refusal"] == 0.0
     with pytest.raises(ValueError, match="no instruction to fit on"):
         fit_weights([(x, np.array([False, False]))])
 

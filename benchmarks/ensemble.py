@@ -5,8 +5,8 @@ The candidates: each seed model of the shipped recipe (``benchmarks/field_seeds.
 (``drywall_lab.nlu.ensemble.CrfEnsembleTagger``: the members' CRF scores averaged; ``seed0+seed1``). Each is scored where the field sets play no part, as the decision layer's
 thresholds were chosen (``benchmarks/decision.py``): the decision cost (``WRONG_ACTION_COST`` x wrong-action rate
 + over-refusal rate, the mean over the generated field corpus's validation and novel splits and the paper corpus's
-novel split, the episodes played as ``run`` plays them, at ``DEFAULT_SETTINGS``) and the paper corpus's test split's Acc_inst (the issue's 99.4%
-target). The shipped tagger is the candidate of least cost among those that keep the target
+novel split, the episodes played as ``run`` plays them, at ``DEFAULT_SETTINGS``) and the paper corpus's test
+split's Acc_inst (the issue's 99.4% target). The shipped tagger is the candidate of least cost among those that keep the target
 (``drywall_lab.nlu.field_study.DEFAULT_ENSEMBLE_SEEDS``, which ``make default-tagger`` trains and combines;
 tested against this file). The hand-written field sets are
 then played by every candidate, for the record only: they choose nothing.
@@ -126,8 +126,8 @@ def main(argv: list[str] | None = None) -> int:
              f"**Command:** `{command_line('ensemble.py', (argv if argv is not None else sys.argv[1:]))}`", "",
              f"**Members:** {', '.join(shown(m) for m in members)}", "", *machine.markdown_lines(),
              f"- wall time: {(time.perf_counter() - started) / 60:.1f} min", "",
-             f"The choice: least `cost` (10 x wrong-action rate + over-refusal rate, mean over {', '.join(CHOICE_SPLITS)}, "
-             f"at the decision layer's default settings) among the candidates whose `test acc_inst` is "
+             f"The choice: least `cost` (10 x wrong-action rate + over-refusal rate, mean over "
+             f"{', '.join(CHOICE_SPLITS)}, at the decision layer's default settings) among the candidates whose `test acc_inst` is "
              f"{ACC_INST_TARGET} or more. Generated splits, where the field sets play no part:", "",
              "```", table[generated].T.to_string(float_format=lambda x: f"{x:.4f}"), "```", "",
              "The hand-written field sets, for the record (they choose nothing):", "",

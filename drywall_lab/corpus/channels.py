@@ -689,7 +689,7 @@ def _glued_runs(sentence: Phrase) -> Phrase:
     out: Phrase = []
     for tok in sentence:
         last = out[-1] if out else None
-        if (tok.is_word and tok.tag not in (None, "O") and last is not None and last.is_word
+        if (tok.is_word and tok.tag != "O" and last is not None and last.is_word
                 and (last.tag, last.coref) == (tok.tag, tok.coref)):
             out[-1] = Token(f"{last.word}_{tok.word}", tok.tag, tok.coref)
         else:
@@ -708,8 +708,8 @@ def glued_fields(ch: Chooser, sentences: Sentences) -> Sentences:
         new: Phrase = []
         for tok in runs:
             last = new[-1] if new else None
-            if (last is not None and last.is_word and last.tag in (None, "O") and last.word.lower() in FIELD_LABELS
-                    and tok.is_word and tok.tag not in (None, "O")):
+            if (last is not None and last.is_word and last.tag == "O" and last.word.lower() in FIELD_LABELS
+                    and tok.is_word and tok.tag != "O"):
                 new[-1] = Token(f"{last.word}{glue}{tok.word}", tok.tag, tok.coref)
             else:
                 new.append(tok)

@@ -33,6 +33,7 @@ through the information-mapping rules (tested). Splits: ``train`` (generated on 
 """
 from __future__ import annotations
 
+import functools
 import hashlib
 import random
 from dataclasses import dataclass, replace
@@ -45,7 +46,7 @@ from drywall_lab.corpus import generator as G
 from drywall_lab.corpus.io import read_jsonl, tokenize, write_jsonl
 from drywall_lab.corpus.markup import Phrase, Token, parse, plain, tagged
 from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_DIGITS, ORDINAL_WORDS, Chooser
-from drywall_lab.site import DATA_DIR, Site, default_site
+from drywall_lab.site import DATA_DIR, Site, default_site, size_words
 
 FIELD_SEED = 2026
 FIELD_DIR = DATA_DIR / "field_corpus"
@@ -209,7 +210,7 @@ class Pieces:
     said_property: bool = False  #: whether the target was said by a property
 
     def noun(self) -> Phrase:
-        return self.noun_of(self.ch)
+        return words_of(self.ch, F.PANEL_NOUNS)
 
     def target(self, terse: bool = False, ref: G.TargetRef | None = None) -> Phrase:
         """The target as said; the meant target said by a property when ``size_property`` is set (drawn after
@@ -220,15 +221,12 @@ class Pieces:
         ch, words = self.size_property
         self.said_property = True
         word = ch.rng.choice(words)
-        slots = {"noun": self.noun_of(ch), "plural": words_of(ch, F.PANEL_NOUNS_PLURAL), "prop": tagged(word, "dim")}
+        slots = {"noun": words_of(ch, F.PANEL_NOUNS), "plural": words_of(ch, F.PANEL_NOUNS_PLURAL),
+                 "prop": tagged(word, "dim")}
         bank = F.TARGET_PROPERTY_TERSE if terse else F.TARGET_PROPERTY
         if word.endswith("est"):  # "the narrowest one", never "a narrowest one"
             bank = [t for t in bank if not t.lstrip("~").startswith("a ")]
         return ch.say(bank, **slots)
-
-    @staticmethod
-    def noun_of(ch: Chooser) -> Phrase:
-        return words_of(ch, F.PANEL_NOUNS)
 
     def _target(self, terse: bool = False, ref: G.TargetRef | None = None) -> Phrase:
         ch, ref = self.ch, ref or self.meaning.target
@@ -1175,16 +1173,17 @@ SIZE_PROPERTY_RATE = 0.12
 _SIZE_KINDS = ("size", "width", "length", "standard")
 
 
+@functools.lru_cache(maxsize=16)
 def size_property_words(site: Site, stack: str) -> tuple[str, ...]:
     """The words of ``data/site/size_words.csv`` that name ``stack`` alone on this site ("narrow": the least width
-    is the 2 x 8's and no other's); none for a stack whose every property another stack shares."""
-    from drywall_lab.site import size_words
-
+    is the 2 x 8's and no other's); none for a stack whose every property another stack shares. Worked out once a
+    site and stack, not once a row."""
     return tuple(word for word, (measure, extreme) in size_words().items()
                  if site.stacks_with_extreme(measure, extreme) == [stack])
 
 
-def size_property_draw(row_id: str, split: str, meaning: G.Meaning, site: Site) -> tuple[Chooser, tuple[str, ...]] | None:
+def size_property_draw(row_id: str, split: str, meaning: G.Meaning,
+                       site: Site) -> tuple[Chooser, tuple[str, ...]] | None:
     """The draws and words for saying this row's target by a property, or None: only a command whose target is
     meant by its size, one row in ``1 / SIZE_PROPERTY_RATE``, drawn from the row's id alone."""
     if meaning.target.kind not in _SIZE_KINDS or meaning.expected.get("refusal") is not None:

@@ -220,7 +220,7 @@ STANDARD_WORDS = [
     "full-sized/dim", "whole/dim", "fullsize/dim", "standard-size/dim",
 ]
 #: A size said by a property: {prop} is a word of ``data/site/size_words.csv`` that names one stack on the site,
-#: tagged dim ("the narrow/dim one", "a big/dim sheet"; guidelines 3, dim).
+#: tagged dim ("the narrow/dim one", "a short/dim sheet"; guidelines 3, dim).
 TARGET_PROPERTY = [
     "the {prop} {noun}", "a {prop} {noun}", "the {prop} one", "a {prop} one", "one of the {prop} {plural}",
     "one of the {prop} ones", "the {prop} {noun}", "~the {prop} {noun} there", "~one of those {prop} ones",

@@ -7,10 +7,10 @@ Five rules, tried in order; the first that applies decides:
    width A, length B; tried turned when nothing matches as said; a single number
    that fits two sizes is ambiguous.
 3. ``dim``: a size word ("full-size", "standard", "regular size") is the standard 4 x 8; a
-   property ("the narrow one", "the short one"; ``data/site/size_words.csv``) is the size
-   with the least or the most of a width or a length, ambiguous when two
-   sizes share it ("the wide one"); a back-reference ("same as the previous one") is the size of the last installed panel. A
-   lone "size" or "sized" names no size: the rule does not apply; nor does a word that only
+   property ("the narrow one", "the short one"; ``data/site/size_words.csv``) is the size with
+   the least or the most of a width or a length, ambiguous when two sizes share it ("the wide
+   one"); a back-reference ("same as the previous one") is the size of the last installed
+   panel. A lone "size" or "sized" names no size: the rule does not apply; nor does a word that only
    points back ("another", "one of those") when other words name the panel ("another 2x8").
 4. ``Dw_loc1`` alone: a stack named by its position (left/middle/right, first/second/third,
    "first from the right"). What the rule cannot place with certainty is refused as
@@ -136,7 +136,7 @@ def target_by_dim(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None
     named = W.standard_size_words(said) or W.property_size_words(said)
     if loose and (named or _named_otherwise(ti)):
         if named:  # "another full sheet", "one more narrow one": one more of the size the word names
-            return _by_size_word(ti, ctx, quoted)
+            return _by_size_word(said, ctx, quoted)
         return None  # "another 2x8", "one of those from the right pile": the other words name the panel
     if W.back_reference_words(said):
         last = ctx.require_last(quoted)
@@ -144,36 +144,31 @@ def target_by_dim(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None
         stack = _stacks_of_size(ctx, *size)[0]
         return top_of(ctx, stack, f"{quoted}: the size of the last installed panel {last['drywall_id']} ({_size_text(size)})")
     if named:
-        return _by_size_word(ti, ctx, quoted)
+        return _by_size_word(said, ctx, quoted)
     return None
 
 
-def _by_size_word(ti: TaggedInstruction, ctx: MappingContext, quoted: str) -> Decision:
-    """The stack a size word names: the standard size ("full-size"), or the size with the least or the most of a
-    measure ("the narrow one": the least width; ``site.size_words``). A property two sizes share ("the wide one":
-    4 x 8 and 4 x 6) is ambiguous, like a single number that fits two sizes (rule 2); so are two words that name
-    different stacks."""
-    said = ti.words_with("dim")
+def _by_size_word(said: list[str], ctx: MappingContext, quoted: str) -> Decision:
+    """The stack the size words among ``said`` name: the standard size ("full-size"), or the size with the least or
+    the most of a measure ("the narrow one": the least width; ``site.size_words``). A property two sizes share ("the
+    wide one": 4 x 8 and 4 x 6) is ambiguous, like a single number that fits two sizes (rule 2); so are two words
+    that name different stacks."""
     table = size_words()
-    named = {_standard_stack(ctx)} if W.standard_size_words(said) else set()
-    for word in W.property_size_words(said):
-        stacks = ctx.site.stacks_with_extreme(*table[W.normalise(word)])
-        if len(stacks) > 1:
-            raise Refusal("ambiguous_size", f"{quoted} fits more than one size ({_sizes_list(ctx, stacks)}): which one? "
-                                            "Say it in feet (\"the 4 by 8\").")
-        named |= set(stacks)
-    if len(named) > 1:
-        raise Refusal("ambiguous_size", f"{quoted} names more than one size ({_sizes_list(ctx, sorted(named, key=STACK_NAMES.index))}): "
-                                        "which panel?")
-    stack = named.pop()
+    why: dict[str, str] = {}  # stack -> what named it, the first word that did
     if W.standard_size_words(said):
-        return top_of(ctx, stack, f"{quoted}: the standard size")
-    return top_of(ctx, stack, f"{quoted}: the size with the {_extreme_text(table, said)}")
-
-
-def _extreme_text(table: dict[str, tuple[str, str]], said: list[str]) -> str:
-    measure, extreme = table[W.normalise(W.property_size_words(said)[0])]
-    return f"{extreme} {measure}"
+        why[_standard_stack(ctx)] = "the standard size"
+    for word in W.property_size_words(said):
+        measure, extreme = table[W.normalise(word)]
+        stacks = ctx.site.stacks_with_extreme(measure, extreme)
+        if len(stacks) > 1:
+            raise Refusal("ambiguous_size", f"{quoted} fits more than one size ({_sizes_list(ctx, stacks)}): "
+                                            "which one? Say it in feet (\"the 4 by 8\").")
+        why.setdefault(stacks[0], f"the size with the {extreme} {measure}")
+    if len(why) > 1:
+        named = _sizes_list(ctx, sorted(why, key=STACK_NAMES.index))
+        raise Refusal("ambiguous_size", f"{quoted} names more than one size ({named}): which panel?")
+    (stack, reason), = why.items()
+    return top_of(ctx, stack, f"{quoted}: {reason}")
 
 
 def _standard_stack(ctx: MappingContext) -> str:

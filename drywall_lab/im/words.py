@@ -19,6 +19,7 @@ from typing import Iterable, Sequence, TypeVar
 
 from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_WORDS
 from drywall_lab.errors import Refusal
+from drywall_lab.site import size_words as size_words_table
 
 _T = TypeVar("_T")
 
@@ -323,9 +324,7 @@ def standard_size_words(words: Iterable[str]) -> list[str]:
 
 def property_size_words(words: Iterable[str]) -> list[str]:
     """The words that say a size by a property ("narrow", "skinny", "short"; ``site.size_words``)."""
-    from drywall_lab.site import size_words as table
-
-    return [w for w in words if normalise(w) in table()]
+    return [w for w in words if normalise(w) in size_words_table()]
 
 
 def size_words(words: Iterable[str]) -> list[str]:

@@ -60,8 +60,8 @@ EXAMPLES = 2
 #: import name`` copy exists and is found.
 PROJECT_MODULES = ("drywall_lab.im", "drywall_lab.im.words", "drywall_lab.im.correction", "drywall_lab.im.trace",
                    "drywall_lab.im.target", "drywall_lab.im.stud", "drywall_lab.im.placement",
-                   "drywall_lab.im.context", "drywall_lab.im.mapper", "drywall_lab.decision", "drywall_lab.pipeline",
-                   "drywall_lab.field")
+                   "drywall_lab.im.context", "drywall_lab.im.alternatives", "drywall_lab.im.mapper",
+                   "drywall_lab.decision", "drywall_lab.pipeline", "drywall_lab.field")
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from results_file import add_results_options, command_line, results_path, write_results_file  # noqa: E402
@@ -125,6 +125,7 @@ class Unswitchable:
 
 W, C, T, S, D = ("drywall_lab.im.words", "drywall_lab.im.correction", "drywall_lab.im.target", "drywall_lab.im.stud",
                  "drywall_lab.decision")
+A = "drywall_lab.im.alternatives"
 REGISTRY: tuple[Rule, ...] = (
     # reading the tags as the guidelines mean them (TaggedInstruction, im/trace.py)
     Rule("stack_place", W, "stack_place", _empty_list, "returns []",
@@ -137,6 +138,9 @@ REGISTRY: tuple[Rule, ...] = (
          "reading"),
     Rule("CORRECTION_CUES", C, "CORRECTION_CUES", (), "()",
          "word list: the corrections ('no', 'wait', 'scratch that', ...) that take earlier words back", "reading"),
+    Rule("offered_alternatives", A, "offered_alternatives", _none, "returns None",
+         "two things offered with 'or' ('500105 or 500106, not sure which'): the robot asks which (guidelines 4.8)",
+         "reading"),
     Rule("_replaced", C, "_replaced", _all_of_before, "returns all the earlier words",
          "a correction that says only a count or an anchor again takes back only the earlier count or anchor",
          "reading"),

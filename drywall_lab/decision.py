@@ -9,9 +9,10 @@ action history, and decides in one step:
    unanswered question, each reading is a candidate once more for each history the instruction may rest on: the
    history had the robot carried out a command it asked about (``had_it_been_done``), each history counting as much
    as the one as things stand. A reading whose words name two panels or two studs (``two_meanings``) adds a
-   candidate for the other meaning, as likely as the one the rules took. The probability the k best leave over (1
-   minus their sum) is one more candidate, "none of these". (Features for these three, fitted, came out at weight 0
-   and moved no generated outcome: they were dropped.)
+   candidate for the other meaning, as likely as the one the rules took; a reading that offers two things with
+   "or" (``Interpretation.alternatives``) is a candidate for each command offered, each as likely. The probability
+   the k best leave over (1 minus their sum) is one more candidate, "none of these". (Features for the first three
+   kinds, fitted, came out at weight 0 and moved no generated outcome: they were dropped.)
 2. **One score each**, the tagger's log-probability plus weighted features of how the words support the reading::
 
        score(r) = w_logp * log p(r) + sum_f w_f * feature_f(r)
@@ -367,6 +368,12 @@ def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHi
     outcome = reading.outcome
     tags = reading.read_tags
     base = dict(log_probability=reading.logprob)
+    offered = [alt for alt in reading.interpretation.alternatives if alt.command is not None
+               and (actual is None or _feasible(actual, outcome_of(alt)))]
+    if offered:  # two things offered with "or": each command as likely, and the question when one alone stands
+        out = [Candidate(outcome_of(alt), _features(**base), Reading(reading.tags, reading.logprob, alt), assumes)
+               for alt in offered]
+        return out if len(offered) > 1 else out + [Candidate(outcome, _features(**base), reading, assumes)]
     if outcome[0] == "refusal":
         kind = "undetermined" if outcome[1] == "undetermined" else "site_refusal"
         return [Candidate(outcome, _features(**base, **{kind: 1.0}, refusal_log_probability=reading.logprob),

@@ -9,6 +9,7 @@ import pytest
 
 from drywall_lab.corpus import read_split, tokenize
 from drywall_lab.corpus import field_generator as FG
+from drywall_lab.corpus.phrases import NUMBER_WORDS
 from drywall_lab.corpus import field_phrases as FP
 from drywall_lab.corpus.generator import missing_meanings
 from drywall_lab.corpus.io import write_jsonl
@@ -80,10 +81,11 @@ def test_a_sample_of_train_gives_its_expected_outcome_with_gold_tags(train):
 def test_sizes_said_by_a_property_change_only_their_own_rows(train):
     """A row said by a property ("the narrow one") is said from the draws of the row it replaces: the split without
     the channel is the same but for those rows, and each of them keeps its meaning and expected outcome."""
-    rows = train[:400]
     monkeypatch = pytest.MonkeyPatch()
-    monkeypatch.setattr(FG, "SIZE_PROPERTY_RATE", 0.0)
+    monkeypatch.setattr(FG, "UNDECIDED_RATE", 0.0)  # an undecided row leaves its episode as it was: see below
     try:
+        rows = FG.generate_field_split("train", n=400)
+        monkeypatch.setattr(FG, "SIZE_PROPERTY_RATE", 0.0)
         without = FG.generate_field_split("train", n=400)
     finally:
         monkeypatch.undo()
@@ -93,13 +95,26 @@ def test_sizes_said_by_a_property_change_only_their_own_rows(train):
     assert all("dim" in a["tags"] and not {"width", "length"} & set(a["tags"]) for a, _ in changed)
 
 
+def test_an_undecided_row_expects_a_question_and_leaves_its_episode_as_it_was(train):
+    """A command said with one part offered twice ("on 500105 or 500106, not sure which") expects a question
+    (``unclear``), and the next step of its episode starts from the same history."""
+    undecided = [i for i, row in enumerate(train) if FG.C.UNDECIDED in row["channels"]]
+    assert 0.02 * len(train) < len(undecided) < 0.06 * len(train)
+    for i in undecided:
+        row = train[i]
+        assert row["expected"] == FG.UNCLEAR and " or " in f" {' '.join(row['words']).lower()} ", row["id"]
+        nxt = train[i + 1] if i + 1 < len(train) else None
+        if nxt is not None and nxt["context"]["episode"] == row["context"]["episode"]:
+            assert nxt["context"]["history"] == row["context"]["history"], row["id"]
+
+
 def test_rows_are_well_formed(committed, train):
     from drywall_lab.corpus.channels import CHANNELS
     from drywall_lab.nlu.normalise import normalise
 
     for row in [r for rows in committed.values() for r in rows] + train[::20]:
         assert row["words"] == list(normalise(row["text"]).words), row["id"]  # the text through the front end
-        assert set(row["channels"]) <= set(CHANNELS) | {FG.C.SIZE_PROPERTIES}, row["id"]
+        assert set(row["channels"]) <= set(FG.C.CHANNEL_NAMES), row["id"]
         assert len(row["tags"]) == len(row["words"]) == len(row["coref_tags"])
         assert set(row["tags"]) <= set(TAGS) and set(row["coref_tags"]) <= set(COREF_TAGS)
         assert row["register"] in FG.REGISTERS
@@ -202,6 +217,9 @@ def test_ruled_out_placements_call_signs_and_labels_are_o(train):
         for i, word in enumerate(words[:-3]):
             if word in FP.CALL_UNITS and words[i + 2:i + 4] == ["this", "is"]:
                 counts["call sign"] += 1
+                assert row["tags"][i + 1] == "O", row["text"]
+            if word in FP.CALL_NAMES and i and words[i - 1] == "is" and words[i + 1] in NUMBER_WORDS.values():
+                counts["call sign"] += 1  # "this is tango two"
                 assert row["tags"][i + 1] == "O", row["text"]
         for i, word in enumerate(words):
             if re.fullmatch(r"#\d{1,2}", word):

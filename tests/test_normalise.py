@@ -21,6 +21,9 @@ from drywall_lab.nlu import normalise as N
     ("stud no. 500103", "stud 500103"),
     ("radio two, five double-oh three one two", "radio two 500312"),
     ("ON NUMBER 500 107 TEN MINUTES AGO", "ON NUMBER 500107 TEN MINUTES AGO"),
+    # digits as radio operators say them, alone and inside an id
+    ("stud five-zero-zero-one-zero-fife, tree studs over", "stud 500105 three studs over"),
+    ("five zero zero tree wun niner", "500319"),
 ])
 def test_ids_as_people_say_and_type_them_are_six_digits(said, read):
     assert N.normalise_text(said) == read
@@ -97,6 +100,10 @@ def test_a_side_said_in_words_keeps_the_workers_words_for_its_tag():
     ("place(panel=500321, stud=500100, edge=centre_line)", "place panel 500321 stud 500100 edge centre line"),
     ("hang --stack middle --stud 500104", "hang stack middle stud 500104"),
     ("stud = 500104", "stud = 500104"),
+    # a position typed as one word with hyphens; a hyphenated word that is no position stays
+    ("--stud 3rd-from-right", "stud 3rd from right"),
+    ("the second-to-last stud, one-to-the-left of 500105", "the second to last stud one to the left of 500105"),
+    ("the left-hand pile, a four-by-eight", "the left-hand pile a four-by-eight"),
     ("2nd from R", "2nd from right"),
     ("one to the r of 500301", "one to the right of 500301"),
     ("u r fast", "u r fast"),  # a texted "are" is no side

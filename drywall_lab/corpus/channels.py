@@ -19,8 +19,8 @@ keeping the meaning and carrying every word's tag along:
   pile has the ones we want, one from that pile ...", "panel 500310 is next, hang it ..."), or a size said as what is
   left of it ("whatever is left of the full sheets");
 - ``openers``: the instruction opened as the next job is ("last thing:", "first off,"), words that name nothing;
-- ``code_switch``: Spanish or German words and phrases mixed in ("la pila de la izquierda", "cuatro por ocho",
-  "der mittlere Stapel"), from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``).
+- ``code_switch``: words and phrases of another language or dialect mixed in ("la pila de la izquierda", "cuatro
+  por ocho", "der mittlere Stapel", "stand am for stud"), from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``).
 
 The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides and the code switch back into
 the corpus's written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
@@ -88,13 +88,34 @@ def say_id(rng: random.Random, ident: str) -> list[str]:
     return [f"{ident[:3]}-{ident[3:]}"]
 
 
+@functools.lru_cache(maxsize=1)
+def radio_digits() -> dict[str, str]:
+    """Digit words as radio operators say them ("five" -> "fife"), from the shorthand lexicon the front end reads
+    them back with (``data/lexicon/abbreviations.tsv``)."""
+    from drywall_lab.nlu.normalise import DIGIT_WORDS, read_lexicon
+
+    return {reading: form for form, reading in read_lexicon()[1].items() if reading in DIGIT_WORDS}
+
+
+def _on_the_radio(ch: Chooser, word: str) -> str:
+    """A digit word, or a hyphen-joined run of them, with each digit the radio says its own way so said (half)."""
+    forms = radio_digits()
+    return "-".join(forms[part] if part in forms and ch.chance(0.5) else part for part in word.split("-"))
+
+
 def spoken_ids(ch: Chooser, sentences: Sentences) -> Sentences:
     """Every id said or typed in one of ``say_id``'s forms; now and then its last digits are said wrongly, broken
-    off and repaired ("five oh oh one one- no, one one one"), the repair's words carrying the tag."""
+    off and repaired ("five oh oh one one- no, one one one"), the repair's words carrying the tag. One instruction in
+    five is said as on a radio: its digits, and the numbers of its counts and sizes, as radio operators say them
+    ("five-zero-zero-one-zero-fife", "tree studs over")."""
+    radio = ch.chance(0.2)
+
     def rewrite(tok: Token) -> Phrase | None:
+        if radio and not _is_id(tok) and tok.tag != "O" and tok.word.lower() in radio_digits():
+            return [_word(_on_the_radio(ch, tok.word.lower()), tok.tag, tok.coref)]
         if not _is_id(tok):
             return None
-        said = [_word(w, tok.tag, tok.coref) for w in say_id(ch.rng, tok.word)]
+        said = [_word(_on_the_radio(ch, w) if radio else w, tok.tag, tok.coref) for w in say_id(ch.rng, tok.word)]
         if len(said) == 6 and ch.chance(0.2):  # "five oh oh one seven- no, one one one"
             wrong = str((int(tok.word[4]) + ch.rng.randint(1, 9)) % 10)
             return said[:3] + [Token(said[3].word, "O", "O"), Token(_DIGIT_WORDS[wrong][0] + "-", "O", "O")] + \
@@ -562,6 +583,8 @@ def restated_studs(ch: Chooser, sentences: Sentences) -> Sentences:
     leftmost one", "on stud 500106" -> "on the seventh from the right - the middle one". Both positions carry ``St_loc1`` (guidelines:
     a stud named twice, tag both); they name the same stud, which the IM checks (``im.stud.stud_by_position``)."""
     studs = len(default_site().studs)
+    if any(tok.is_word and tok.tag == "St_loc1" for sentence in sentences for tok in sentence):
+        return sentences  # already said by its position as well as by its id: a third saying is no restatement
     out: Sentences = []
     done = False
     for sentence in sentences:
@@ -684,27 +707,41 @@ def openers(ch: Chooser, sentences: Sentences) -> Sentences:
 FIELD_LABELS = frozenset({"stud", "panel", "sheet", "board", "pile", "stack", "row", "size", "edge", "line", "id"})
 
 
-def _glued_runs(sentence: Phrase) -> Phrase:
-    """Each run of two or more words of one tag as one word joined by "_" ("centre_line", "five_oh_oh_one_oh_four")."""
+def _glued_runs(sentence: Phrase, position_joiner: str = "_") -> Phrase:
+    """Each run of two or more words of one tag as one word joined by "_" ("centre_line", "five_oh_oh_one_oh_four"),
+    a position's run by ``position_joiner`` ("3rd-from-right": the front end's ``split_fields`` reads both)."""
+    from drywall_lab.nlu.normalise import _joined_position
+
+    runs: list[list[Token]] = []
     out: Phrase = []
     for tok in sentence:
-        last = out[-1] if out else None
-        if (tok.is_word and tok.tag != "O" and last is not None and last.is_word
+        last = runs[-1][-1] if runs else None
+        if (tok.is_word and tok.tag != "O" and last is not None and last.is_word and last.tag != "O"
                 and (last.tag, last.coref) == (tok.tag, tok.coref)):
-            out[-1] = Token(f"{last.word}_{tok.word}", tok.tag, tok.coref)
+            runs[-1].append(tok)
         else:
-            out.append(tok)
+            runs.append([tok])
+    for run in runs:
+        if len(run) == 1:
+            out.append(run[0])
+            continue
+        words = [t.word for t in run]
+        dashed = "-".join(words)
+        joiner = position_joiner if _joined_position(dashed) == words else "_"
+        out.append(Token(joiner.join(words), run[0].tag, run[0].coref))
     return out
 
 
 def glued_fields(ch: Chooser, sentences: Sentences) -> Sentences:
-    """Typed as a program or a terse form is: each run of words of one tag joined by "_" ("centre_line"), and a field's
+    """Typed as a program or a terse form is: each run of words of one tag joined by "_" ("centre_line"; a position's
+    now and then by "-": "3rd-from-right"), and a field's
     label glued to the value after it by "=" or ":" ("stud=500104", "size=2x8"; the label takes the value's tag). The
     front end's ``split_fields`` takes them apart again."""
     glue = ch.rng.choice(["=", "=", ":"])
+    position_joiner = ch.rng.choice(["_", "-"])
     out: Sentences = []
     for sentence in sentences:
-        runs = _glued_runs(sentence) if ch.chance(0.7) else list(sentence)
+        runs = _glued_runs(sentence, position_joiner) if ch.chance(0.7) else list(sentence)
         new: Phrase = []
         for tok in runs:
             last = new[-1] if new else None
@@ -726,8 +763,12 @@ CHANNELS: dict[str, Channel] = {
 #: A row whose target is said by a property ("the narrow one") instead of its size, in every split: drawn where the
 #: target is said (``field_generator.size_property_draw``), so not a function of sentences; a row records it like one.
 SIZE_PROPERTIES = "size_properties"
+#: A command with one of its parts offered twice with "or" ("on 500105 or 500106, not sure which"), in every split:
+#: it changes what the row means (a question is expected; ``field_generator.offer_alternative``), so not a function of
+#: sentences either.
+UNDECIDED = "undecided"
 #: Every name a row's ``channels`` may hold.
-CHANNEL_NAMES: tuple[str, ...] = (*CHANNELS, SIZE_PROPERTIES)
+CHANNEL_NAMES: tuple[str, ...] = (*CHANNELS, SIZE_PROPERTIES, UNDECIDED)
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
 CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, "relative_talk": 0.35,
                                    "spoken_ids": 0.15, "shorthand": 0.12, "disfluency": 0.15, "asides": 0.15,

@@ -1075,6 +1075,28 @@ def _typo(rng: random.Random, word: str) -> str:
     return word[:i] + word[i] + word[i:]  # a letter twice
 
 
+#: Untagged words the IM reads (the default placement offered with "or": "the left line"; a row word after "along",
+#: "across", "onto": ``im.words.stack_place``): never misspelt.
+READ_UNTAGGED = frozenset({"left", "line", "edge", "side", "along", "across", "onto", "into", "near"})
+
+
+@functools.lru_cache(maxsize=1)
+def _read_by_front_end() -> frozenset[str]:
+    """The one-word forms the front end reads as other words (the code-switch and shorthand lexicons): a typo that
+    lands on one ("come" -> "comme", French for "as") would say another word."""
+    from drywall_lab.nlu.normalise import fold, read_code_switch, read_lexicon
+
+    exact, any_case = read_lexicon()
+    return frozenset({fold(form) for form, _, _ in read_code_switch() if " " not in form} | set(any_case)
+                     | {form.lower() for form in exact})
+
+
+def _misspelt(rng: random.Random, word: str) -> str:
+    """A typo in ``word``, or the word as it is where the typo would be a word the front end reads as another."""
+    typo = _typo(rng, word)
+    return word if typo.lower() in _read_by_front_end() or word.lower() in READ_UNTAGGED else typo
+
+
 def add_noise(ch: Chooser, sentences: Sentences, spoken: bool) -> Sentences:
     """Dropped articles, fillers, stutters and restarts, typos: only in words that carry no tag."""
     rng = ch.rng
@@ -1094,7 +1116,7 @@ def add_noise(ch: Chooser, sentences: Sentences, spoken: bool) -> Sentences:
                 if spoken and rng.random() < 0.03:
                     new.append(Token(tok.word, "O", "O"))  # a stutter: "put put the ..."
                 if typo_p and len(tok.word) >= 4 and tok.word.isalpha() and rng.random() < typo_p:
-                    tok = Token(_typo(rng, tok.word), "O", tok.coref)
+                    tok = Token(_misspelt(rng, tok.word), "O", tok.coref)
             new.append(tok)
         if spoken and rng.random() < 0.12:  # a restart: "put the uh put the 4x8 ..."
             k = rng.randint(1, 3)
@@ -1193,17 +1215,120 @@ def size_property_draw(row_id: str, split: str, meaning: G.Meaning,
     return (ch, words) if words and ch.chance(SIZE_PROPERTY_RATE) else None
 
 
+# --- two things offered with "or" ----------------------------------------------------------------------
+#: How often a command is said with one of its parts offered twice, joined by "or" ("on 500105 or 500106, I forget
+#: which"): the worker has not decided, so the robot must ask (``refusal: unclear``; guidelines 4.8). In every split,
+#: drawn apart from the split's own draws.
+UNDECIDED_RATE = 0.04
+#: What a worker who has not decided adds after the offer.
+UNSURE_BANK = ["not sure which", "I forget which", "I can't remember which", "one of those two", "can't recall which",
+               "I'm not sure which one", "one or the other, not sure", "check which"]
+_PLACEMENT_PHRASES = {"vertical_middle": ("centre line", "Vr_md"), "horizontal_top": ("top row", "Hr_top"),
+                      "horizontal_bottom": ("bottom row", "Hr_btm"), "vertical_left": ("left line", None)}
+#: The refusal an undecided instruction expects.
+UNCLEAR = {"drywall_id": None, "stud_id": None, "placement": None, "refusal": "unclear"}
+
+
+def _placement_phrase(ch: Chooser, placement: str) -> Phrase:
+    words, tag = _PLACEMENT_PHRASES[placement]
+    if tag is None:
+        return plain("the left " + ch.rng.choice(["line", "edge", "line", "side"]))
+    return plain("the") + tagged(words, tag)
+
+
+def _size_said(ch: Chooser, size: tuple[float, float]) -> Phrase:
+    w, l = (int(x) for x in size)
+    if ch.chance(0.5):
+        return plain(ch.rng.choice(["the", "a"])) + tagged(f"{w}x{l}", "width")
+    return plain(ch.rng.choice(["the", "a"])) + tagged(NUMBER_WORDS[w], "width") + plain("by") + \
+        tagged(NUMBER_WORDS[l], "length")
+
+
+def _groups(sentences: Sentences, tags: frozenset[str]) -> list[tuple[int, int]]:
+    """(sentence, last word) of each run of words carrying ``tags`` (across one untagged word: "four by six")."""
+    out = []
+    for si, sentence in enumerate(sentences):
+        idx = [i for i, t in enumerate(sentence) if t.is_word and t.tag in tags]
+        for n, i in enumerate(idx):
+            if n + 1 == len(idx) or idx[n + 1] - i > 2:
+                out.append((si, i))
+    return out
+
+
+def _once(sentences: Sentences, tags: set[str]) -> list[tuple[int, int]]:
+    """Where a part is said once, the end of its words ([] where it is said twice or not at all: an offer after
+    one saying would leave the other standing)."""
+    groups = _groups(sentences, frozenset(tags))
+    return groups if len(groups) == 1 else []
+
+
+def offer_alternative(ch: Chooser, sentences: Sentences, meaning: G.Meaning, site: Site) -> Sentences | None:
+    """The instruction with one part offered twice: after the words of its panel id, its size, its stud id or its
+    placement (or, for the default placement, after the stud), ", or" and another of the same kind, tagged as
+    said (the default placement's words ``O``), and now and then what the worker adds ("not sure which"). None
+    where no part is said in a form that can be offered."""
+    e = meaning.expected
+    options: list[tuple[tuple[int, int], Phrase]] = []
+    for at in _once(sentences, {"ID_wall"}):
+        other = ch.rng.choice([p for p in site.panel_ids if p != e["drywall_id"]])
+        options.append((at, tagged(other, "ID_wall")))
+    for at in _once(sentences, {"width", "length"}):
+        size = site.panel(e["drywall_id"]).size_ft
+        others = sorted({s for s in site.sizes.values() if s != size})
+        options.append((at, _size_said(ch, ch.rng.choice(others))))
+    for at in _once(sentences, {"ID_stud"}):
+        k = site.stud_ids.index(e["stud_id"])
+        near = [site.stud_ids[j] for j in range(max(0, k - 3), min(len(site.stud_ids), k + 4)) if j != k]
+        options.append((at, (plain("stud") if ch.chance(0.3) else []) + tagged(ch.rng.choice(near), "ID_stud")))
+    placed = _once(sentences, {"Vr_md", "Hr_top", "Hr_btm"})
+    others = [p for p in _PLACEMENT_PHRASES if p != e["placement"]]
+    if placed:
+        options.append((placed[0], _placement_phrase(ch, ch.rng.choice(others))))
+    elif e["placement"] == "vertical_left":
+        for at in _groups(sentences, frozenset({"ID_stud", "St_loc1", "St_loc2"}))[-1:]:
+            pair = [_placement_phrase(ch, "vertical_left"), _placement_phrase(ch, ch.rng.choice(others[:3]))]
+            if ch.chance(0.5):
+                pair.reverse()
+            options.append((at, [punct(",")] + plain("on") + pair[0] + plain("or") + pair[1]))
+    if not options:
+        return None
+    (si, i), said = ch.rng.choice(options)
+    if said[0].word != ",":
+        said = ([punct(",")] if ch.chance(0.4) else []) + plain("or") + \
+            (plain(ch.rng.choice(["maybe", "perhaps"])) if ch.chance(0.3) else []) + said
+    out = [list(sentence) for sentence in sentences]
+    out[si][i + 1:i + 1] = said
+    if ch.chance(0.6):
+        out.append(words_of(ch, UNSURE_BANK) + [punct(".")])
+    return out
+
+
+def undecided_draw(row_id: str, split: str, meaning: G.Meaning) -> Chooser | None:
+    """The draws for saying this row undecided, or None: only a command, one row in ``1 / UNDECIDED_RATE``, drawn
+    from the row's id alone."""
+    if meaning.expected.get("refusal") is not None:
+        return None
+    ch = Chooser(random.Random(f"{row_id}-{C.UNDECIDED}"), novel=split == "novel")
+    return ch if ch.chance(UNDECIDED_RATE) else None
+
+
 # --- episodes and splits ------------------------------------------------------------------------------
 def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict]:
     ch = Chooser(rng, novel=(split == "novel"))
 
-    def said(ep: G.Episode, meaning: G.Meaning, row_id: str, prop: tuple[Chooser, tuple[str, ...]] | None):
-        """One step in a register, with noise and channels, read through the front end."""
+    def said(ep: G.Episode, meaning: G.Meaning, row_id: str, prop: tuple[Chooser, tuple[str, ...]] | None,
+             undecided: Chooser | None = None):
+        """One step in a register, with noise and channels, read through the front end (None: ``undecided`` found
+        no part to offer)."""
         register = G._weighted(rng, REGISTERS)
         spoken = register in ("speech", "texting") or (register in ("radio", "correction") and rng.random() < 0.5) \
             or (register in ("explain", "boss") and rng.random() < 0.3)
         speaker = Speaker(ch, meaning, ep, register, size_property=prop)
         sentences = speaker.sentences()
+        if undecided is not None:
+            sentences = offer_alternative(undecided, sentences, meaning, site)
+            if sentences is None:
+                return None
         sentences = add_noise(ch, sentences, spoken)
         if register == "texting":
             sentences = texting_forms(ch, sentences)
@@ -1211,6 +1336,8 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
         sentences = C.apply_channels(ch, sentences, channels)
         if speaker.p.said_property:
             channels += (C.SIZE_PROPERTIES,)
+        if undecided is not None:
+            channels += (C.UNDECIDED,)
         if split == "novel":
             sentences, overlays = C.apply_overlays(row_id, sentences)
             channels += overlays
@@ -1218,16 +1345,25 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
                                                                                  shout=register == "boss"))
 
     def say(ep: G.Episode, meaning: G.Meaning, row_no: int, episode_no: int, step: int) -> dict | None:
-        """One step (None: no words left). A step said by a property is said twice from the same draws, without it
-        and with it, and the split goes on from the first: every other row is what it is without the channel."""
+        """One step (None: no words left). A step said by a property, or undecided, is said again from the same
+        draws, and the split goes on from the first saying: every other row is what it is without them. An
+        undecided step expects a question (``UNCLEAR``) and leaves the episode as it was."""
         row_id = f"field-{split}-{row_no:05d}"
         start = rng.getstate()
         register, channels, n_sentences, words = said(ep, meaning, row_id, None)
         prop = size_property_draw(row_id, split, meaning, site)
-        if prop is not None and words[1]:
+        undecided = undecided_draw(row_id, split, meaning)
+        if (prop is not None or undecided is not None) and words[1]:
             end = rng.getstate()
             rng.setstate(start)
-            register, channels, n_sentences, words = said(ep, meaning, row_id, prop)
+            again = said(ep, meaning, row_id, prop, undecided)
+            if again is None and prop is not None:  # no part to offer: said by the property alone
+                rng.setstate(start)
+                again = said(ep, meaning, row_id, prop)
+            if again is not None:
+                register, channels, n_sentences, words = again
+                if undecided is not None and C.UNDECIDED in channels:
+                    meaning = replace(meaning, expected=dict(UNCLEAR))
             rng.setstate(end)
         if not words[1]:
             return None
@@ -1266,12 +1402,12 @@ def write_field_corpus(out_dir: Path | str = FIELD_DIR, seed: int = FIELD_SEED,
 
 def generator_fingerprint(seed: int = FIELD_SEED) -> str:
     """A hash of everything a generated split depends on: the corpus package's source, the front end and its
-    lexicon, the site tables, the seed and the split sizes. The cached ``train`` split carries it, so a changed generator never reads a stale one."""
+    lexicons, the site tables, the seed and the split sizes. The cached ``train`` split carries it, so a changed generator never reads a stale one."""
     digest = hashlib.sha256(f"{seed} {sorted(FIELD_SPLIT_SIZES.items())}".encode())
     from drywall_lab.nlu import normalise as front_end  # the rows are read through it
 
     sources = sorted(Path(__file__).resolve().parent.glob("*.py")) + sorted((DATA_DIR / "site").glob("*.csv")) + \
-        [Path(front_end.__file__), Path(front_end.LEXICON_PATH)]
+        [Path(front_end.__file__), Path(front_end.LEXICON_PATH), Path(front_end.CODE_SWITCH_PATH)]
     for source in sources:
         digest.update(source.name.encode() + b"\0" + source.read_bytes())
     return digest.hexdigest()

@@ -512,7 +512,8 @@ CALL_NAMES = ["alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "
               "mike", "november", "oscar", "papa", "quebec", "romeo", "sierra", "tango", "uniform", "victor", "whiskey",
               "x-ray", "yankee", "zulu", "base", "control", "site office", "the gate", "ops", "the foreman", "supervisor"]
 CALL_FRAMES = ["{unit} {n} , this is {name}", "{name} to {unit} {n}", "{unit} {n} , {name}", "{name} calling {unit} {n}",
-               "{unit} {n} from {name}", "this is {name} for {unit} {n}"]
+               "{unit} {n} from {name}", "this is {name} for {unit} {n}", "{name} {n}", "{unit} , this is {name} {n}",
+               "this is {name} {n}", "{name} {n} here"]
 #: A numbered label before a list or key-value instruction ("task #3 :"): the number is a label, O.
 LABEL_NOUNS = ["task", "job", "work order", "card", "entry", "line", "order", "step"]
 

@@ -107,9 +107,8 @@ class Episode:
     def last(self) -> dict | None:
         return self.history[-1] if self.history else None
 
-    def accept(self, meaning: "Meaning") -> None:
-        """Carry out the meaning's command, if it is one: the panel goes on the wall and into the history."""
-        e = meaning.expected
+    def accept(self, e: dict) -> None:
+        """Carry out a row's expected command, if it is one: the panel goes on the wall and into the history."""
         if e["refusal"] is None:
             self.state = self.state.install(e["drywall_id"], e["stud_id"], e["placement"])
             self.history.append({k: e[k] for k in ("drywall_id", "stud_id", "placement")})
@@ -644,8 +643,8 @@ def episode_rows(rng: random.Random, site: Site, n: int, draw_length: Callable[[
 
     Each episode is at most ``draw_length()`` steps long; each step means a command, or (with probability
     ``refusal_rate``) an instruction to refuse (``command_meaning``, ``refusal_meaning`` with ``weights``), and an
-    episode ends early when no meaning is feasible. ``say`` turns a step into its row; a step said is accepted
-    into the episode.
+    episode ends early when no meaning is feasible. ``say`` turns a step into its row; the row's expected command,
+    if any, is accepted into the episode.
     """
     rows: list[dict] = []
     episode_no = 0
@@ -663,7 +662,7 @@ def episode_rows(rng: random.Random, site: Site, n: int, draw_length: Callable[[
             if row is None:
                 continue
             rows.append(row)
-            ep.accept(meaning)
+            ep.accept(row["expected"])
         episode_no += 1
     return rows
 

@@ -13,6 +13,7 @@ from typing import Callable, Mapping, Sequence, TypeVar
 
 from drywall_lab.errors import Refusal
 from drywall_lab.im import words as W
+from drywall_lab.im.alternatives import Offer, offered_alternatives
 from drywall_lab.im.command import RobotCommand
 from drywall_lab.im.context import MappingContext
 from drywall_lab.im.history import ActionHistory
@@ -34,6 +35,9 @@ class Interpretation:
     trace: Trace = field(default_factory=Trace)
     command: RobotCommand | None = None
     refusal: Refusal | None = None
+    #: Where the worker offered two things with "or" and they give different outcomes: each alternative read on its
+    #: own (``alternatives.offered_alternatives``); the refusal is then ``unclear``.
+    alternatives: list["Interpretation"] = field(default_factory=list)
 
     @property
     def accepted(self) -> bool:
@@ -57,12 +61,14 @@ class Interpretation:
 
 
 def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory | None = None,
-              site: Site | None = None) -> Interpretation:
+              site: Site | None = None, offers: bool = True) -> Interpretation:
     """Map one tagged instruction to a command or a refusal, given the history so far (not changed).
 
     The order of the checks: target rules, destination rules, placement, then whether
     the panel can be picked (``already_installed``, ``not_on_top``) and whether it fits
-    (``past_wall_end``, ``overlap``). The first refusal stops the rest.
+    (``past_wall_end``, ``overlap``). The first refusal stops the rest. Before them, a part offered twice with
+    "or" (``offered_alternatives``; ``offers``) is read once for each alternative: where the two give different
+    outcomes the robot asks which (``unclear``).
     """
     history = history if history is not None else ActionHistory(site)
     site = history.site
@@ -80,6 +86,12 @@ def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory 
                              "on the wall: read as O")
     if ti.taken_back:
         trace.add("reading", "R0 final intention", True, conclusion=_taken_back_text(ti))
+    offer = offered_alternatives(ti.words, ti.tags) if offers else None
+    if offer is not None:
+        undecided = _undecided(ti, offer, history, trace)
+        if undecided is not None:
+            result.refusal, result.alternatives = undecided
+            return result
     ctx = MappingContext(site, history.state, history.last)
     try:
         drywall_id = resolve_target(ti, ctx, trace)
@@ -94,6 +106,29 @@ def interpret(words: Sequence[str], tags: Sequence[str], history: ActionHistory 
     except Refusal as refusal:
         result.refusal = refusal
     return result
+
+
+def _said(ti: TaggedInstruction, offer: Offer, which: int) -> str:
+    positions = (offer.first, offer.second)[which] or offer.default_words
+    return W.quote(ti.words[min(positions):max(positions) + 1])
+
+
+def _undecided(ti: TaggedInstruction, offer: Offer, history: ActionHistory,
+               trace: Trace) -> tuple[Refusal, list[Interpretation]] | None:
+    """Each alternative of an offer read on its own; the refusal and the alternatives where their outcomes differ,
+    None (read as one instruction) where both say the same."""
+    readings = [interpret(ti.words, tags, history, offers=False) for tags in offer.readings(ti.tags)]
+    first, second = _said(ti, offer, 0), _said(ti, offer, 1)
+    if readings[0].outcome() == readings[1].outcome():
+        trace.add("reading", "R0 alternatives", True,
+                  conclusion=f"{first} or {second}: both give the same {offer.part}, read as one")
+        return None
+    said = [f"panel {r.command.drywall_id} on stud {r.command.stud_id}, {r.command.placement.described}"
+            if r.command else f"nothing I can do ({r.refusal.message})" for r in readings]
+    message = f"You said {first} or {second}: which {offer.part} do you mean, {said[0]}, or {said[1]}?"
+
+    trace.add("reading", "R0 alternatives", True, conclusion=f"refused (unclear): {message}")
+    return Refusal("unclear", message), readings
 
 
 def _taken_back_text(ti: TaggedInstruction) -> str:

@@ -5,8 +5,9 @@ eight", "five double-oh one one two", "five hundred one-oh-eight") or split ("50
 plural ("one of the 2x8s"), a board's sides in metric ("1200 x 2400", "600 mm wide", "twelve hundred by twenty-four
 hundred": the feet they stand for), the site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields
 separated by ``|`` or ``->``), spoken disfluency (fillers, stutters, a false start broken off with a dash and
-repaired: "the four by- no, the two by eight"), and Spanish or German words a crew mixes into English ("la pila de
-la izquierda", "cuatro por ocho", "der mittlere Stapel": ``data/lexicon/code_switch.tsv``). The paper's tagger
+repaired: "the four by- no, the two by eight"), and words of another language or dialect a crew mixes into English
+(Spanish, German, French, Portuguese, West African Pidgin, spoken English dialects: "la pila de la izquierda", "cuatro
+por ocho", "der mittlere Stapel", "stand am for stud", "that'n": ``data/lexicon/code_switch.tsv``). The paper's tagger
 (Sec. 3.1) learns surface forms from its corpus; a form it never met is a guess. This module reads every such form into one written form first, for training
 and prediction alike (``drywall_lab.corpus.field_generator`` writes its rows through it), so that a new voice
 reaches the tagger in words it knows.
@@ -182,17 +183,36 @@ def _text(pieces: Sequence[Piece], said: Sequence[str]) -> str:
     return " ".join(said[i] for p in pieces for i in p.said)
 
 
+#: Words that make a hyphen-joined word a position said as one ("3rd-from-right", "second-to-last", "one-to-the-left").
+POSITION_LINKS = frozenset({"from", "to", "of", "the", "in"})
+_ORDINAL = re.compile(r"^\d+(?:st|nd|rd|th)$|^(?:first|second|third|fourth|fifth|sixth|seventh|eighth|ninth|tenth|"
+                      r"eleventh|twelfth|last)$", re.I)
+
+
+def _joined_position(word: str) -> list[str] | None:
+    """The words of a position typed as one hyphen-joined word ("3rd-from-right" -> 3rd, from, right), or None."""
+    parts = word.split("-")
+    if len(parts) < 2 or not all(parts):
+        return None
+    low = [p.lower() for p in parts]
+    return parts if POSITION_LINKS.intersection(low) and (any(_ORDINAL.match(p) for p in low)
+                                                          or {"left", "right", "end", "last"}.intersection(low)) else None
+
+
 def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A form's or a program's fields glued by a separator ("Stud:500104", "2x8->500106", "stud=500104",
-    "place(panel", "centre_line") are words apart. A separator said alone ("|", "->", "=") stays: the IM reads it as
-    punctuation, a boundary between fields."""
+    "place(panel", "centre_line") are words apart, and so are the words of a position typed as one with hyphens
+    ("3rd-from-right"). A separator said alone ("|", "->", "=") stays: the IM reads it as punctuation, a boundary
+    between fields."""
     out: list[Piece] = []
     for p in pieces:
-        if not _FIELD_SEPARATORS.search(p.word) or not any(c.isalnum() for c in p.word):
+        glued = _FIELD_SEPARATORS.search(p.word) and any(c.isalnum() for c in p.word)
+        if not glued and _joined_position(p.word) is None:
             out.append(p)
             continue
-        parts = [w for w in _FIELD_SEPARATORS.split(p.word) if w]
-        words = [w for part in parts for w in tokenize(part) if any(c.isalnum() for c in w)]
+        parts = [w for w in _FIELD_SEPARATORS.split(p.word) if w] if glued else [p.word]
+        words = [w for part in parts for word in tokenize(part) if any(c.isalnum() for c in word)
+                 for w in _joined_position(word) or [word]]
         if words != [p.word]:
             changes.append(Change("separator", p.word, " ".join(words)))
         out += [Piece(w, p.said, p.broken_off and k == len(words) - 1) for k, w in enumerate(words)]
@@ -305,10 +325,17 @@ def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 
 
 # --- numbers --------------------------------------------------------------------------------------------
+def _radio_digit(word: str) -> str:
+    """A digit as radio operators say it read as the digit's word ("fife" -> "five", from the shorthand lexicon);
+    any other word as it is."""
+    reading = read_lexicon()[1].get(word)
+    return reading if reading is not None and reading in DIGIT_WORDS else word
+
+
 def _number_parts(word: str) -> list[str] | None:
     """The parts of a word that belongs to a spoken or split number ("one-oh-eight" -> ["one", "oh", "eight"]),
     or None."""
-    w = fold(word)  # "zéro" is "zero"
+    w = _radio_digit(fold(word))  # "zéro" is "zero", "fife" is "five"
     if _DIGITS.match(w) or w in DIGIT_WORDS or w in TEEN_WORDS or w in TENS_WORDS or w in REPEATS or w == "hundred":
         return [w]
     marked = _MARKED_ID.match(w)
@@ -317,7 +344,7 @@ def _number_parts(word: str) -> list[str] | None:
     split = _SPLIT_ID.match(w)
     if split:
         return [split.group(1), split.group(2)]
-    parts = w.split("-")
+    parts = [_radio_digit(p) for p in w.split("-")]
     if len(parts) > 1 and all(p in DIGIT_WORDS or p in TEEN_WORDS or p in TENS_WORDS or p in REPEATS or _DIGITS.match(p)
                               for p in parts if p):
         return [p for p in parts if p]

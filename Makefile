@@ -43,12 +43,12 @@ MEMBERS_DIR ?= build/default_tagger_members
 # character features trained on the field corpus (its training split and the paper corpus's, twice:
 # drywall_lab/splits.py CORPORA), settings in drywall_lab/nlu/field_study.py DEFAULT_FIELD_TAGGER. Each member is trained
 # with one thread on the CPU, so that it is rebuilt bit for bit on the same machine and torch build (another CPU may
-# round differently); the two train at once. Seeds 0 and 2
+# round differently); the two train at once. Seeds 0 and 1
 # (DEFAULT_ENSEMBLE_SEEDS): of the ensembles of the recipe's three seed models, the one that keeps the
 # test split's Acc_inst at 99.4% or more with the least decision cost on the generated field validation and novel splits and the paper's novel split
 # (benchmarks/results/ensemble.md). The shipped directory is replaced only once the ensemble is saved.
-ENSEMBLE_SEEDS := 0 2
-default-tagger: setup  ## retrain the shipped tagger (two BiLSTM-CRFs, seeds 0 and 2, ~25 min on 2 CPU cores) and record its scores
+ENSEMBLE_SEEDS := 0 1
+default-tagger: setup  ## retrain the shipped tagger (two BiLSTM-CRFs, seeds 0 and 1, ~25 min on 2 CPU cores) and record its scores
 	set -e; mkdir -p $(MEMBERS_DIR); pids=""; for seed in $(ENSEMBLE_SEEDS); do \
 	  rm -rf $(MEMBERS_DIR)/seed$$seed; \
 	  OMP_NUM_THREADS=1 $(BIN)/python -m drywall_lab train bilstm-crf --corpus field --char-features --batch-size 32 \

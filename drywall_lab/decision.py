@@ -160,8 +160,8 @@ BEST_PATH = DecisionSettings(k=1, costs=DecisionCosts(wrong=0.0, refuse=1.0, ask
 #: corpus's validation split for the shipped tagger (``benchmarks/results/decision.md``; a test checks that they are
 #: the recorded ones).
 DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
-    log_probability=1.6155, undetermined=-2.3748, site_refusal=-2.1812, refusal_log_probability=0.5725,
-    beyond_k_best=2.4355),
+    log_probability=1.5134, undetermined=-3.8582, site_refusal=-5.2095, refusal_log_probability=1.0935,
+    beyond_k_best=4.0672),
     costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
 
 
@@ -501,9 +501,8 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
         action, options = "refuse", []
         resting = [c.assumes for c, q in zip(cands, p) if c.assumes is not None and c.outcome == ("refusal", "unclear")]
         refusals = [o for o in mass if o[0] == "refusal" and o != NONE_OF_THESE and o[1] != "unclear"]
-        source = (likeliest(max(refusals, key=lambda o: mass[o])) if refusals else likeliest(readings[0].outcome)
-                  if readings[0].outcome[0] == "refusal" else None)
-        source = source.reading.interpretation if source is not None else readings[0].interpretation
+        source = likeliest(max(refusals, key=lambda o: mass[o])).reading.interpretation if refusals \
+            else readings[0].interpretation
         refusal = source.refusal or (
             Refusal("unclear", f"I have not carried out \"{' '.join(resting[0].words)}\", and this rests on it as "
                                "far as I can tell. Which panel should I pick, and which stud does it go on?")

@@ -45,7 +45,7 @@ DEFAULT_FIELD_TAGGER = {"corpus": "field", "char_features": True, "batch_size": 
 #: keeps the paper's test split at the issue's Acc_inst (99.4% or more) with the least decision cost on the generated
 #: field validation and novel splits and the paper's novel split (``benchmarks/results/ensemble.md``, ``chosen=``;
 #: tested), never chosen on the hand-written sets.
-DEFAULT_ENSEMBLE_SEEDS = (0, 2)
+DEFAULT_ENSEMBLE_SEEDS = (0, 1)
 #: The ablation trains each of its models once, with this seed (a member of the shipped ensemble).
 STUDY_SEED = 1
 SHARED_FIELD = Path(__file__).resolve().parents[2].parent / "shared" / "field"

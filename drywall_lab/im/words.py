@@ -273,23 +273,6 @@ def stack_place(words: Sequence[str]) -> list[int]:
     return out
 
 
-#: How many words after "of" an anchor said but not tagged is quoted from.
-ANCHOR_REACH = 4
-
-
-def unread_anchor(words: Sequence[str], tags: Sequence[str], tag: str) -> list[str]:
-    """The untagged words after a position that ends in a side and "of" ("the pile to the right of the one we've
-    been using"): an anchor was said, but no word of it was read as one. [] where none was said, or one was read."""
-    idx = [i for i, t in enumerate(tags) if t == tag]
-    if not idx or normalise(words[idx[-1]]) not in LEFT_WORDS | RIGHT_WORDS:
-        return []
-    k = idx[-1] + 1
-    if k + 1 >= len(words) or normalise(words[k]) != "of":
-        return []
-    after = list(range(k + 1, min(len(words), k + 1 + ANCHOR_REACH)))
-    return [words[j] for j in after] if all(tags[j] == "O" for j in after) else []
-
-
 def says_from(words: Iterable[str]) -> bool:
     """ "from the left", "counting from the right": a position counted from one end."""
     return any(normalise(w) in ("from", "counting") for w in words)

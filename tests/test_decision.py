@@ -150,7 +150,8 @@ class _Gold:
 
 @pytest.mark.parametrize("split", ["field-validation", "field-novel", "field-set"])
 def test_gold_tags_played_as_episodes_give_every_intended_outcome(split):
-    """Played as run plays them (the pipeline's own history, step 5 on), gold tags still give every outcome."""
+    """Played as run plays them (the pipeline's own history, step 5 on), gold tags still give every outcome (a
+    question about two things offered with "or" leaves no history open: nothing rests on it)."""
     rows = split_rows(split)
     episodes: dict[str, list[dict]] = {}
     for row in rows:

@@ -157,6 +157,9 @@ REGISTRY: tuple[Rule, ...] = (
     Rule("property_size_words", W, "property_size_words", _empty_list, "returns []",
          "T3: a size said by a property ('the narrow one', 'the short one') is the size with the least or the most "
          "of that measure on the site", "target"),
+    Rule("unread_anchor", W, "unread_anchor", _empty_list, "returns []",
+         "T4 and S2: a side followed by 'of' and words none of which was read as an anchor ('the pile to the right of "
+         "the door') is a question, never the side's stack or stud", "target"),
     Rule("points_back", W, "points_back", _false, "returns False",
          "T5 and S3: an anchor that points back ('previous', 'that one') is the last command's stack or stud",
          "target"),

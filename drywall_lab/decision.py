@@ -160,8 +160,8 @@ BEST_PATH = DecisionSettings(k=1, costs=DecisionCosts(wrong=0.0, refuse=1.0, ask
 #: corpus's validation split for the shipped tagger (``benchmarks/results/decision.md``; a test checks that they are
 #: the recorded ones).
 DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
-    log_probability=2.2634, undetermined=-4.8582, site_refusal=-3.2095, refusal_log_probability=1.3435,
-    beyond_k_best=4.0672),
+    log_probability=1.1123, undetermined=-5.3593, site_refusal=-3.0607, refusal_log_probability=0.7504,
+    beyond_k_best=3.1206),
     costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
 
 
@@ -563,6 +563,13 @@ def said_tags(decision: Decision, margin: float = 0.0) -> set[str]:
     return said
 
 
+def _counted_from_elsewhere(ti: TaggedInstruction, tag: str) -> bool:
+    """A position counted from words no rule read that do not point back ("right of the door", not "left of that
+    one"): something the site does not have, so nothing a later instruction can build on."""
+    unread = W.unread_anchor(ti.words, ti.tags, tag)
+    return bool(unread) and not W.points_back(unread)
+
+
 def completions(decision: Decision, history: ActionHistory, half: str = "said", margin: float = 0.0) -> list[Outcome]:
     """The commands an instruction refused as ``undetermined`` may have meant, feasible on the site as ``history``
     leaves it: the panel and the stud its reading determines, and any panel on top of a stack or any stud for the
@@ -577,14 +584,15 @@ def completions(decision: Decision, history: ActionHistory, half: str = "said", 
     try:
         panels = [resolve_target(ti, ctx)]
     except Refusal:
-        if half == "said" and not said & set(TARGET_TAGS):
-            return []  # nothing said about the panel ("any sheet"): nothing to build on
+        if half == "said" and (not said & set(TARGET_TAGS) or _counted_from_elsewhere(ti, "Dw_loc1")):
+            return []  # nothing said about the panel ("any sheet"), or counted from what the site lacks ("right of
+            # the door"): nothing to build on
         panels = [p for p in history.state.tops.values() if p is not None]
     try:
         studs = [resolve_stud(ti, ctx)]
     except Refusal:
-        if half == "said" and not said & set(DESTINATION_TAGS):
-            return []  # nothing said about the stud ("over there")
+        if half == "said" and (not said & set(DESTINATION_TAGS) or _counted_from_elsewhere(ti, "St_loc1")):
+            return []  # nothing said about the stud ("over there"), or counted from what the site lacks
         studs = list(history.site.stud_ids)
     try:
         placements = [resolve_placement(ti)]

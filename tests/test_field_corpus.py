@@ -274,3 +274,15 @@ def test_counts_after_the_anchor_positions_with_ids_and_counted_panels(train):
                 seen["a second"] += 1
                 assert tags[i] == "O", row["text"]
     assert min(seen["count after the anchor"], seen["position and id"], seen["a second"]) >= 50, seen
+
+
+def test_a_landmark_anchor_expects_a_question_in_the_novel_split_only(committed):
+    """A novel command counted from a thing the site does not have ("the pile right of the door") expects the robot
+    to ask (``undetermined``); no other split says it so."""
+    rows = committed["novel"]
+    landmarks = [r for r in rows if FG.C.LANDMARK_ANCHORS in r["channels"]]
+    assert len(landmarks) >= 10
+    for row in landmarks:  # the landmark's words are O, and may carry a typo or another language's words
+        assert row["expected"] == FG.UNANCHORED and " of " in f" {' '.join(row['words']).lower()} ", row["id"]
+        assert not {"Dw_loc2", "St_loc2"} & set(row["tags"]), row["id"]
+    assert not any(FG.C.LANDMARK_ANCHORS in r["channels"] for split in ("validation", "test") for r in committed[split])

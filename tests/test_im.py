@@ -985,3 +985,26 @@ def test_the_uppermost_sheet_of_a_stack_is_no_row(markup, placement):
     words, tags = _wt(markup)
     result = interpret(words, tags, ActionHistory())
     assert result.command is not None and result.command.placement.value == placement, result.summary()
+
+
+@pytest.mark.parametrize("tagged, what", [
+    ("take the top one from the pile to/Dw_loc1 the/Dw_loc1 right/Dw_loc1 of the one we used , on 500106/ID_stud",
+     "stack"),
+    ("the 2x8/width on the stud to/St_loc1 the/St_loc1 left/St_loc1 of where the window is", "stud"),
+])
+def test_a_side_followed_by_an_anchor_not_read_is_a_question(tagged, what):
+    """ "to the right of the one we used": an anchor was said, no word of it read as one: the robot asks which
+    stack or stud to count from, never reads the side as the right stack (words.unread_anchor)."""
+    words, tags = zip(*[(w.partition("/")[0], w.partition("/")[2] or "O") for w in tagged.split()])
+    result = interpret(list(words), list(tags))
+    assert result.refusal is not None and result.refusal.reason == "undetermined"
+    assert f"which {what} do you count from" in result.refusal.message
+
+
+def test_a_side_with_its_anchor_read_or_without_of_is_read_as_usual():
+    from drywall_lab.im import words as W
+
+    assert W.unread_anchor("the pile to the right of 500310".split(),
+                           ["O", "O", "Dw_loc1", "Dw_loc1", "Dw_loc1", "O", "Dw_loc2"], "Dw_loc1") == []
+    assert W.unread_anchor("the right pile , on 500104".split(), ["O", "Dw_loc1", "O", "O", "O", "ID_stud"],
+                           "Dw_loc1") == []

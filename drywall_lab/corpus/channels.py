@@ -767,8 +767,11 @@ SIZE_PROPERTIES = "size_properties"
 #: it changes what the row means (a question is expected; ``field_generator.offer_alternative``), so not a function of
 #: sentences either.
 UNDECIDED = "undecided"
+#: A novel command counted from a thing the site does not have ("the pile right of the door"): a question is
+#: expected (``field_generator.landmark_anchor``), so not a function of sentences either.
+LANDMARK_ANCHORS = "landmark_anchors"
 #: Every name a row's ``channels`` may hold.
-CHANNEL_NAMES: tuple[str, ...] = (*CHANNELS, SIZE_PROPERTIES, UNDECIDED)
+CHANNEL_NAMES: tuple[str, ...] = (*CHANNELS, SIZE_PROPERTIES, UNDECIDED, LANDMARK_ANCHORS)
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
 CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, "relative_talk": 0.35,
                                    "spoken_ids": 0.15, "shorthand": 0.12, "disfluency": 0.15, "asides": 0.15,

@@ -1312,12 +1312,58 @@ def undecided_draw(row_id: str, split: str, meaning: G.Meaning) -> Chooser | Non
     return ch if ch.chance(UNDECIDED_RATE) else None
 
 
+# --- anchors the site does not have -----------------------------------------------------------------
+#: How often a novel command counted from an anchor ("the pile right of 500310", "two studs left of 500107") is said
+#: counted from a thing the site tables do not have ("the pile right of the door"): the robot cannot count from it
+#: and must ask (``UNANCHORED``). The novel split only: a held-back way of saying, drawn apart from the split's own
+#: draws.
+LANDMARK_RATE = 0.15
+#: Things on a wall or a site that are no stack, panel or stud of the site tables.
+LANDMARKS = ["the door", "the window", "the window opening", "the vent", "the ladder", "the corner", "the doorway",
+             "the outlet box", "the light switch", "the fire extinguisher", "the radiator", "the scaffold"]
+#: The refusal an instruction counted from a landmark expects.
+UNANCHORED = {"drywall_id": None, "stud_id": None, "placement": None, "refusal": "undetermined"}
+
+
+def landmark_anchor(ch: Chooser, sentences: Sentences) -> Sentences | None:
+    """The instruction with its anchor (the words after "of" through the ``Dw_loc2`` or ``St_loc2`` words) said as a
+    landmark of ``LANDMARKS``, all ``O`` ("to the right of the door"); None where no anchor follows "of" or the
+    anchor is said twice."""
+    anchors = [(si, i) for si, sentence in enumerate(sentences) for i, t in enumerate(sentence)
+               if t.is_word and t.tag in ("Dw_loc2", "St_loc2")]
+    if not anchors or len({si for si, _ in anchors}) != 1:
+        return None
+    si = anchors[0][0]
+    first, last = anchors[0][1], anchors[-1][1]
+    sentence = sentences[si]
+    if last - first + 1 != len(anchors):
+        return None  # the anchor's words apart: said twice
+    of = next((i for i in range(first - 1, max(-1, first - 5), -1) if sentence[i].is_word
+               and sentence[i].word.lower() == "of"), None)
+    if of is None or any(t.tag != "O" for t in sentence[of + 1:first] if t.is_word) or of == 0 \
+            or not sentence[of - 1].is_word or sentence[of - 1].tag not in ("Dw_loc1", "St_loc1"):
+        return None
+    out = [list(s) for s in sentences]
+    out[si][of + 1:last + 1] = plain(ch.rng.choice(LANDMARKS))
+    return out
+
+
+def landmark_draw(row_id: str, split: str, meaning: G.Meaning) -> Chooser | None:
+    """The draws for saying this row counted from a landmark, or None: only a novel command counted from an
+    anchor, one row in ``1 / LANDMARK_RATE``, drawn from the row's id alone."""
+    relative = meaning.target.kind == "relative" or meaning.stud.kind == "relative"
+    if split != "novel" or not relative or meaning.expected.get("refusal") is not None:
+        return None
+    ch = Chooser(random.Random(f"{row_id}-{C.LANDMARK_ANCHORS}"), novel=True)
+    return ch if ch.chance(LANDMARK_RATE) else None
+
+
 # --- episodes and splits ------------------------------------------------------------------------------
 def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict]:
     ch = Chooser(rng, novel=(split == "novel"))
 
     def said(ep: G.Episode, meaning: G.Meaning, row_id: str, prop: tuple[Chooser, tuple[str, ...]] | None,
-             undecided: Chooser | None = None):
+             undecided: Chooser | None = None, landmark: Chooser | None = None):
         """One step in a register, with noise and channels, read through the front end (None: ``undecided`` found
         no part to offer)."""
         register = G._weighted(rng, REGISTERS)
@@ -1329,6 +1375,10 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
             sentences = offer_alternative(undecided, sentences, meaning, site)
             if sentences is None:
                 return None
+        if landmark is not None:
+            sentences = landmark_anchor(landmark, sentences)
+            if sentences is None:
+                return None
         sentences = add_noise(ch, sentences, spoken)
         if register == "texting":
             sentences = texting_forms(ch, sentences)
@@ -1338,6 +1388,8 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
             channels += (C.SIZE_PROPERTIES,)
         if undecided is not None:
             channels += (C.UNDECIDED,)
+        if landmark is not None:
+            channels += (C.LANDMARK_ANCHORS,)
         if split == "novel":
             sentences, overlays = C.apply_overlays(row_id, sentences)
             channels += overlays
@@ -1364,6 +1416,15 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
                 register, channels, n_sentences, words = again
                 if undecided is not None and C.UNDECIDED in channels:
                     meaning = replace(meaning, expected=dict(UNCLEAR))
+            rng.setstate(end)
+        landmark = landmark_draw(row_id, split, meaning) if words[1] else None
+        if landmark is not None:
+            end = rng.getstate()
+            rng.setstate(start)
+            again = said(ep, meaning, row_id, None, None, landmark)
+            if again is not None:
+                register, channels, n_sentences, words = again
+                meaning = replace(meaning, expected=dict(UNANCHORED))
             rng.setstate(end)
         if not words[1]:
             return None

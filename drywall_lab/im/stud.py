@@ -81,6 +81,9 @@ def stud_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | N
         return None
     index, how = position
     quoted = W.quote(ti.phrase("St_loc1"))
+    anchor = W.unread_anchor(ti.words, ti.tags, "St_loc1")
+    if anchor:
+        raise Refusal("undetermined", f"You said {quoted} of {W.quote(anchor)}: which stud do you count from?")
     stud = _stud_at(ctx, index, quoted)
     return Decision(stud.stud_id, f"{quoted}: {how} -> stud {stud.stud_id}")
 

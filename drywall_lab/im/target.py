@@ -196,6 +196,9 @@ def target_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision |
         return None
     index, how = position
     quoted = W.quote(ti.phrase("Dw_loc1"))
+    anchor = W.unread_anchor(ti.words, ti.tags, "Dw_loc1")
+    if anchor:
+        raise Refusal("undetermined", f"You said {quoted} of {W.quote(anchor)}: which stack do you count from?")
     stack = _stack_at(ctx, index, quoted)
     return top_of(ctx, stack, f"{quoted}: {how}, the {stack} stack")
 

@@ -273,6 +273,34 @@ def stack_place(words: Sequence[str]) -> list[int]:
     return out
 
 
+#: How many words after "of" an anchor said but not tagged is quoted from.
+ANCHOR_REACH = 4
+#: Words that may stand between a side and its "of" ("the right side of", "left, ok, of"): none names a thing.
+ANCHOR_GAP_WORDS = frozenset({"side", "hand", "ok", "okay", "so", "like", "yeah", "well", "basically", "alright",
+                              "uh", "um", "er", "hmm"})
+
+
+def unread_anchor(words: Sequence[str], tags: Sequence[str], tag: str) -> list[str]:
+    """The untagged words after a position that ends in a side and "of" ("the pile to the right of the door"): an
+    anchor was said, but no word of it was read as one (no ``Dw_loc2`` / ``St_loc2`` at all). [] where none was said,
+    or one was read."""
+    idx = [i for i, t in enumerate(tags) if t == tag]
+    if not idx or {"Dw_loc1": "Dw_loc2", "St_loc1": "St_loc2"}.get(tag) in tags \
+            or normalise(words[idx[-1]]) not in LEFT_WORDS | RIGHT_WORDS:
+        return []
+    k = idx[-1] + 1
+    while k < len(words) and tags[k] == "O" and normalise(words[k]) in ANCHOR_GAP_WORDS:
+        k += 1  # "to the right side of", "to the left, ok, of"
+    if k >= len(words) or normalise(words[k]) != "of":
+        return []
+    said = []
+    for j in range(k + 1, min(len(words), k + 1 + ANCHOR_REACH)):
+        if tags[j] != "O":
+            break
+        said.append(words[j])
+    return said
+
+
 def says_from(words: Iterable[str]) -> bool:
     """ "from the left", "counting from the right": a position counted from one end."""
     return any(normalise(w) in ("from", "counting") for w in words)

@@ -232,7 +232,10 @@ def _side_letter(pieces: Sequence[Piece], k: int) -> str | None:
     word = pieces[k].word
     if word not in _SIDES:
         return None
-    before = pieces[k - 1].word.lower() if k else ""
+    j = k - 1
+    while j >= 0 and (pieces[j].word.lower(),) in FILLERS:
+        j -= 1  # "from the erm l": fillers go later (``drop_fillers``)
+    before = pieces[j].word.lower() if j >= 0 else ""
     after = pieces[k + 1].word.lower() if k + 1 < len(pieces) else ""
     count = before.isdigit() or before in DIGIT_WORDS or before in TEEN_WORDS  # "2 r of 500103"
     then = pieces[k + 2].word.lower() if k + 2 < len(pieces) else ""

@@ -92,9 +92,9 @@ def say_id(rng: random.Random, ident: str) -> list[str]:
 def radio_digits() -> dict[str, str]:
     """Digit words as radio operators say them ("five" -> "fife"), from the shorthand lexicon the front end reads
     them back with (``data/lexicon/abbreviations.tsv``)."""
-    from drywall_lab.nlu.normalise import DIGIT_WORDS, read_lexicon
+    from drywall_lab.nlu.normalise import radio_digit_readings
 
-    return {reading: form for form, reading in read_lexicon()[1].items() if reading in DIGIT_WORDS}
+    return {reading: form for form, reading in radio_digit_readings().items()}
 
 
 def _on_the_radio(ch: Chooser, word: str) -> str:
@@ -710,7 +710,7 @@ FIELD_LABELS = frozenset({"stud", "panel", "sheet", "board", "pile", "stack", "r
 def _glued_runs(sentence: Phrase, position_joiner: str = "_") -> Phrase:
     """Each run of two or more words of one tag as one word joined by "_" ("centre_line", "five_oh_oh_one_oh_four"),
     a position's run by ``position_joiner`` ("3rd-from-right": the front end's ``split_fields`` reads both)."""
-    from drywall_lab.nlu.normalise import _joined_position
+    from drywall_lab.nlu.normalise import joined_position
 
     runs: list[list[Token]] = []
     out: Phrase = []
@@ -727,7 +727,7 @@ def _glued_runs(sentence: Phrase, position_joiner: str = "_") -> Phrase:
             continue
         words = [t.word for t in run]
         dashed = "-".join(words)
-        joiner = position_joiner if _joined_position(dashed) == words else "_"
+        joiner = position_joiner if joined_position(dashed) == words else "_"
         out.append(Token(joiner.join(words), run[0].tag, run[0].coref))
     return out
 

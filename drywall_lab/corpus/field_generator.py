@@ -1286,7 +1286,7 @@ def offer_alternative(ch: Chooser, sentences: Sentences, meaning: G.Meaning, sit
         options.append((placed[0], _placement_phrase(ch, ch.rng.choice(others))))
     elif e["placement"] == "vertical_left":
         for at in _groups(sentences, frozenset({"ID_stud", "St_loc1", "St_loc2"}))[-1:]:
-            pair = [_placement_phrase(ch, "vertical_left"), _placement_phrase(ch, ch.rng.choice(others[:3]))]
+            pair = [_placement_phrase(ch, "vertical_left"), _placement_phrase(ch, ch.rng.choice(others))]
             if ch.chance(0.5):
                 pair.reverse()
             options.append((at, [punct(",")] + plain("on") + pair[0] + plain("or") + pair[1]))
@@ -1365,7 +1365,7 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
     def said(ep: G.Episode, meaning: G.Meaning, row_id: str, prop: tuple[Chooser, tuple[str, ...]] | None,
              undecided: Chooser | None = None, landmark: Chooser | None = None):
         """One step in a register, with noise and channels, read through the front end (None: ``undecided`` found
-        no part to offer)."""
+        no part to offer, or ``landmark`` no anchor to replace)."""
         register = G._weighted(rng, REGISTERS)
         spoken = register in ("speech", "texting") or (register in ("radio", "correction") and rng.random() < 0.5) \
             or (register in ("explain", "boss") and rng.random() < 0.3)
@@ -1397,35 +1397,39 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
                                                                                  shout=register == "boss"))
 
     def say(ep: G.Episode, meaning: G.Meaning, row_no: int, episode_no: int, step: int) -> dict | None:
-        """One step (None: no words left). A step said by a property, or undecided, is said again from the same
-        draws, and the split goes on from the first saying: every other row is what it is without them. An
-        undecided step expects a question (``UNCLEAR``) and leaves the episode as it was."""
+        """One step (None: no words left). A step said by a property, undecided or counted from a landmark is said
+        again from the same draws, and the split goes on from the first saying: every other row is what it is without
+        them. An undecided step expects a question (``UNCLEAR``), one counted from a landmark another
+        (``UNANCHORED``); neither changes the episode."""
         row_id = f"field-{split}-{row_no:05d}"
         start = rng.getstate()
+
+        def said_again(*ways: Chooser | tuple | None):
+            """The step said once more from the first saying's draws; the split's draws go on as they were."""
+            end = rng.getstate()
+            rng.setstate(start)
+            try:
+                return said(ep, meaning, row_id, *ways)
+            finally:
+                rng.setstate(end)
+
         register, channels, n_sentences, words = said(ep, meaning, row_id, None)
         prop = size_property_draw(row_id, split, meaning, site)
         undecided = undecided_draw(row_id, split, meaning)
         if (prop is not None or undecided is not None) and words[1]:
-            end = rng.getstate()
-            rng.setstate(start)
-            again = said(ep, meaning, row_id, prop, undecided)
+            again = said_again(prop, undecided)
             if again is None and prop is not None:  # no part to offer: said by the property alone
-                rng.setstate(start)
-                again = said(ep, meaning, row_id, prop)
+                again = said_again(prop)
             if again is not None:
                 register, channels, n_sentences, words = again
-                if undecided is not None and C.UNDECIDED in channels:
+                if C.UNDECIDED in channels:
                     meaning = replace(meaning, expected=dict(UNCLEAR))
-            rng.setstate(end)
         landmark = landmark_draw(row_id, split, meaning) if words[1] else None
         if landmark is not None:
-            end = rng.getstate()
-            rng.setstate(start)
-            again = said(ep, meaning, row_id, None, None, landmark)
+            again = said_again(None, None, landmark)
             if again is not None:
                 register, channels, n_sentences, words = again
                 meaning = replace(meaning, expected=dict(UNANCHORED))
-            rng.setstate(end)
         if not words[1]:
             return None
         return G.corpus_row(row_id, words, n_sentences, f"field-{split}-ep{episode_no:05d}",

@@ -126,7 +126,6 @@ def _undecided(ti: TaggedInstruction, offer: Offer, history: ActionHistory,
     said = [f"panel {r.command.drywall_id} on stud {r.command.stud_id}, {r.command.placement.described}"
             if r.command else f"nothing I can do ({r.refusal.message})" for r in readings]
     message = f"You said {first} or {second}: which {offer.part} do you mean, {said[0]}, or {said[1]}?"
-
     trace.add("reading", "R0 alternatives", True, conclusion=f"refused (unclear): {message}")
     return Refusal("unclear", message), readings
 

@@ -189,7 +189,7 @@ _ORDINAL = re.compile(r"^\d+(?:st|nd|rd|th)$|^(?:first|second|third|fourth|fifth
                       r"eleventh|twelfth|last)$", re.I)
 
 
-def _joined_position(word: str) -> list[str] | None:
+def joined_position(word: str) -> list[str] | None:
     """The words of a position typed as one hyphen-joined word ("3rd-from-right" -> 3rd, from, right), or None."""
     parts = word.split("-")
     if len(parts) < 2 or not all(parts):
@@ -207,12 +207,12 @@ def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     out: list[Piece] = []
     for p in pieces:
         glued = _FIELD_SEPARATORS.search(p.word) and any(c.isalnum() for c in p.word)
-        if not glued and _joined_position(p.word) is None:
+        if not glued and joined_position(p.word) is None:
             out.append(p)
             continue
         parts = [w for w in _FIELD_SEPARATORS.split(p.word) if w] if glued else [p.word]
         words = [w for part in parts for word in tokenize(part) if any(c.isalnum() for c in word)
-                 for w in _joined_position(word) or [word]]
+                 for w in joined_position(word) or [word]]
         if words != [p.word]:
             changes.append(Change("separator", p.word, " ".join(words)))
         out += [Piece(w, p.said, p.broken_off and k == len(words) - 1) for k, w in enumerate(words)]
@@ -328,11 +328,16 @@ def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 
 
 # --- numbers --------------------------------------------------------------------------------------------
+@lru_cache(maxsize=1)
+def radio_digit_readings() -> dict[str, str]:
+    """The digits as radio operators say them, each with the digit's word ("fife" -> "five"): the shorthand lexicon's
+    forms read as a digit word."""
+    return {form: reading for form, reading in read_lexicon()[1].items() if reading in DIGIT_WORDS}
+
+
 def _radio_digit(word: str) -> str:
-    """A digit as radio operators say it read as the digit's word ("fife" -> "five", from the shorthand lexicon);
-    any other word as it is."""
-    reading = read_lexicon()[1].get(word)
-    return reading if reading is not None and reading in DIGIT_WORDS else word
+    """A digit as radio operators say it read as the digit's word ("fife" -> "five"); any other word as it is."""
+    return radio_digit_readings().get(word, word)
 
 
 def _number_parts(word: str) -> list[str] | None:

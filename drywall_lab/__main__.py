@@ -288,7 +288,9 @@ def _cmd_experiment(args: argparse.Namespace) -> int:
 
     settings = ExperimentSettings.fast() if args.fast else ExperimentSettings.paper()
     if args.study == "seeds":
-        run_seed_study(args.out or "results/paper", settings)
+        from drywall_lab.nlu.experiments import SEED_MODELS
+
+        run_seed_study(args.out or "results/paper", settings, models=tuple(args.models or SEED_MODELS))
         return 0
     run_paper_experiment(args.out or "results/paper", settings)
     return 0
@@ -321,14 +323,15 @@ def build_parser() -> argparse.ArgumentParser:
     add_tagger_commands(sub)  # train, ensemble, evaluate (drywall_lab/nlu/cli.py)
 
     p = sub.add_parser("experiment", help="paper: the paper's NLU study (LSTM/BERT-M1..M4, BERT-C1..C4, Tables 3-5, "
-                                          "Fig. 13); seeds: LSTM-M1..M4 and BERT-M4 over three seeds; field: the "
+                                          "Fig. 13); seeds: LSTM-M1..M4 and BERT-M1..M4 over three seeds; field: the "
                                           "ablation from the corpus to the field")
     p.add_argument("study", choices=["paper", "seeds", "field"])
     p.add_argument("--out", default=None, help="output folder (default results/paper, or results/field)")
     p.add_argument("--fast", action="store_true", help="an eighth of the data and 3 / 1 epochs: a quick check, not the study")
     p.add_argument("--models", nargs="+", default=None, metavar="MODEL",
                    help='field: train only these models of the ablation, e.g. "MiniLM field" (the others\' rows are '
-                        "kept when they are current); two runs with different models may run at once")
+                        "kept when they are current); two runs with different models may run at once. seeds: "
+                        'train only these, e.g. "BERT-M1 BERT-M2" (the other models\' rows are kept)')
     p.add_argument("--keep-models", default="build/field_study", metavar="DIR",
                    help="field: keep the trained models here, and score a model kept here under the same corpus and "
                         "settings instead of training it again (default build/field_study; 'none': keep nothing)")

@@ -242,3 +242,45 @@ def test_metric_sizes_say_the_sides_in_metric_and_the_front_end_reads_them_back(
             tags = read.tags_of_words([t.tag for s in out for t in s if t.is_word])
             assert interpret(list(read.words), tags, history=ActionHistory()).outcome() == before, (text, read.words)
     assert {"600x2400", "1.2", "120"} <= {w.removesuffix("mm").removesuffix("cm") for s in said for w in s.split()}
+
+
+def _phrase(text: str) -> list[Token]:
+    """ "two/St_loc1 studs" -> tokens (a word without a tag is O)."""
+    return [Token(w.split("/")[0], w.split("/")[1], w.split("/")[1]) if "/" in w else Token(w, "O", "O")
+            for w in text.split()]
+
+
+@pytest.mark.parametrize("said, written", [
+    ("two/St_loc1 studs over/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of the previous/St_loc2 stud", "prev+2"),
+    ("one/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1 of 500104/St_loc2", "500104-1"),
+    ("three/St_loc1 studs further/St_loc1 right/St_loc1 of the leftmost/St_loc2 stud",
+     "three studs further right of the leftmost stud"),  # an anchor a sum does not name
+    ("2nd/St_loc1 from/St_loc1 the/St_loc1 right/St_loc1", "2nd from the right"),  # no anchor
+])
+def test_a_stud_counted_from_the_previous_one_or_an_id_is_written_as_a_sum(said, written):
+    out = C._written_sums(_phrase(said))
+    assert " ".join(t.word for t in out) == written
+    if "+" in written or "-" in written:
+        assert [t.tag for t in out] == ["St_loc1"]
+
+
+def test_a_value_that_says_which_goes_after_its_label_and_the_front_end_reads_it_back():
+    from drywall_lab.nlu.normalise import normalise
+
+    out = C._labels_first(_phrase("the same/dim size/dim in the top/Hr_top row/Hr_top on the far/Dw_loc1 left/Dw_loc1 pile"), "=")
+    assert [t.word for t in out] == ["the", "size=same", "in", "the", "row=top", "on", "the", "far", "left", "pile"]
+    assert normalise(" ".join(t.word for t in out)).words[:6] == ("the", "same", "size", "in", "the", "top")
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_a_value_taken_back_leaves_the_meant_value_tagged_and_the_front_end_drops_the_other(seed):
+    from drywall_lab.nlu.normalise import normalise
+
+    sentence = _phrase("put the 2x8/width on stud 500104/ID_stud in the top/Hr_top row/Hr_top , second/St_loc1 "
+                       "from/St_loc1 the/St_loc1 left/St_loc1")
+    out = C.value_repairs(Chooser(random.Random(seed)), [sentence])[0]
+    tagged = [(t.word, t.tag) for t in out if t.is_word and t.tag != "O"]
+    assert tagged == [(t.word, t.tag) for t in sentence if t.is_word and t.tag != "O"]  # the meant values, as tagged
+    assert len([t for t in out if t.is_word]) > len([t for t in sentence if t.is_word])  # something was taken back
+    text = " ".join(t.word for t in out).replace(" ,", ",")
+    assert normalise(text).words == normalise(" ".join(t.word for t in sentence if t.is_word)).words, text

@@ -6,7 +6,7 @@ import pandas as pd
 import pytest
 
 from drywall_lab.course.common import percent_table
-from drywall_lab.course.study import seed_finding, seed_share_columns, seed_spread
+from drywall_lab.course.study import seed_finding, seed_share_columns, seed_sizes_finding, seed_spread
 
 COLUMNS = ["model", "seed", "train_instructions", "validation_acc_inst", "novel_acc_inst", "novel_acc_task",
            "train_seconds"]
@@ -110,3 +110,14 @@ def test_the_study_model_of_a_size_and_its_rows():
     lstm = study_rows("table3_validation", "LSTM")
     assert list(lstm.index) == ["LSTM-M1", "LSTM-M2", "LSTM-M3", "LSTM-M4"] and list(lstm.columns) == TABLE3_COLUMNS
     assert list(study_rows("m1_on_test", "BERT").index) == ["BERT-M1"]
+
+
+def test_each_size_with_both_models_is_compared_over_the_seeds(seeds):
+    text = seed_sizes_finding(seed_spread(seeds))
+    assert text.splitlines() == [text]  # only M4 has both models in the fixture: one sentence
+    assert text.startswith("M4 (316 training instructions): LSTM-M4 92.00% ± 2.00% (90.00% to 94.00%), BERT-M4 97.00%")
+    assert "BERT-M4 is ahead by 5.00 points on the mean, and every seed of BERT-M4 is above every seed of LSTM-M4" in text
+    novel = seed_sizes_finding(seed_spread(seeds), "novel")
+    assert "the seeds' ranges overlap" in novel
+    assert seed_sizes_finding(seed_spread(seeds[seeds.model != "BERT-M4"])) == \
+        "The seed table has no size with both models."

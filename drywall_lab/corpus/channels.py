@@ -20,10 +20,14 @@ keeping the meaning and carrying every word's tag along:
   left of it ("whatever is left of the full sheets");
 - ``openers``: the instruction opened as the next job is ("last thing:", "first off,"), words that name nothing;
 - ``code_switch``: words and phrases of another language or dialect mixed in ("la pila de la izquierda", "cuatro
-  por ocho", "der mittlere Stapel", "stand am for stud"), from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``).
+  por ocho", "der mittlere Stapel", "stand am for stud"), from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``);
+- ``glued_fields``: typed as a program or a terse form ("stud=500104", "centre_line", "3rd-from-right"), a stud as a
+  sum ("prev+2", "500104-1") and a value after its label ("size=same", "row=top");
+- ``value_repairs``: one value said wrongly and taken back by another of its kind ("stud 500101, er, 500100, sorry",
+  "four to the left- right", "the third, no, the fourth").
 
-The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides and the code switch back into
-the corpus's written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
+The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides, the code switch, the glued
+fields and the values taken back into the corpus's written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
 training splits (``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction
 said in a way the tagger never met (first sight).
 """
@@ -35,7 +39,7 @@ import re
 from typing import Callable
 
 from drywall_lab.corpus.markup import Phrase, Token
-from drywall_lab.corpus.phrases import ORDINAL_WORDS, Chooser
+from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_DIGITS, ORDINAL_WORDS, Chooser
 from drywall_lab.site import default_site
 
 Sentences = list[Phrase]
@@ -636,6 +640,11 @@ def _foreign_forms() -> dict[str, dict[tuple[str, ...], list[str]]]:
 
 
 def _switched(ch: Chooser, sentence: Phrase, forms: dict[tuple[str, ...], list[str]], longest: int) -> Phrase:
+    from drywall_lab.nlu.normalise import DIGIT_WORDS, DIGITS_ONLY_IN_A_RUN
+
+    def in_number(k: int) -> bool:  # a digit said between two number words: "um" may be one there
+        return all(0 <= j < len(sentence) and sentence[j].word.lower() in DIGIT_WORDS for j in (k - 1, k + 1))
+
     new: Phrase = []
     i = 0
     while i < len(sentence):
@@ -643,8 +652,9 @@ def _switched(ch: Chooser, sentence: Phrase, forms: dict[tuple[str, ...], list[s
         english = [t.word.lower() for t in run]
         n = next((n for n in range(len(run), 0, -1) if all(t.is_word for t in run[:n])
                   and len({(t.tag, t.coref) for t in run[:n]}) == 1 and tuple(english[:n]) in forms), 0)
-        if n and ch.chance(0.5):
-            said = ch.rng.choice(forms[tuple(english[:n])])
+        said_as = [f for f in forms[tuple(english[:n])] if f not in DIGITS_ONLY_IN_A_RUN or in_number(i)] if n else []
+        if said_as and ch.chance(0.5):
+            said = ch.rng.choice(said_as)
             new += [Token(w, run[0].tag, run[0].coref) for w in said.split()]
             i += n
             continue
@@ -703,8 +713,7 @@ def openers(ch: Chooser, sentences: Sentences) -> Sentences:
 
 
 # --- glued fields -------------------------------------------------------------------------------------------
-#: Words that name the field a value fills, glued to the value in a form or a program ("stud=500104", "panel:500321").
-FIELD_LABELS = frozenset({"stud", "panel", "sheet", "board", "pile", "stack", "row", "size", "edge", "line", "id"})
+
 
 
 def _glued_runs(sentence: Phrase, position_joiner: str = "_") -> Phrase:
@@ -732,21 +741,94 @@ def _glued_runs(sentence: Phrase, position_joiner: str = "_") -> Phrase:
     return out
 
 
+_COUNTS = {**{w: n for n, w in NUMBER_WORDS.items() if n}, **{str(n): n for n in range(1, 13)}}
+#: Words inside a relative stud's span or between it and its anchor that a sum leaves out ("two studs over to the
+#: right of the previous stud" -> "prev+2").
+_SUM_FILLER = frozenset({"to", "the", "over", "studs", "stud", "places", "place", "of", "from", "one"})
+#: Anchors a sum can name: the last accepted command's stud, or an id.
+_SUM_ANCHORS = {("previous",): "prev", ("last",): "last", ("previous", "one"): "prev", ("last", "one"): "last"}
+
+
+def _written_sums(sentence: Phrase) -> Phrase:
+    """A stud counted from the previous one or from an id, written as a sum ("two studs to the right of the previous
+    stud" -> "prev+2", "one to the left of 500104" -> "500104-1"; tagged ``St_loc1``, the front end's
+    ``read_offsets`` reads it back); other relative talk stays as it is."""
+    out: Phrase = []
+    i = 0
+    while i < len(sentence):
+        tok = sentence[i]
+        if not (tok.is_word and tok.tag == "St_loc1" and tok.word.lower() in _COUNTS):
+            out.append(tok)
+            i += 1
+            continue
+        j, side = i + 1, None
+        while j < len(sentence) and sentence[j].is_word and (sentence[j].tag == "St_loc1" or (
+                sentence[j].tag == "O" and sentence[j].word.lower() in _SUM_FILLER)) and side is None:
+            side = sentence[j].word.lower() if sentence[j].word.lower() in ("left", "right") else None
+            j += 1
+        k = j
+        while k < len(sentence) and sentence[k].is_word and sentence[k].tag == "O" and sentence[k].word.lower() in ("of", "the"):
+            k += 1
+        e = k
+        while e < len(sentence) and sentence[e].is_word and sentence[e].tag == "St_loc2":
+            e += 1
+        anchor = [t.word.lower() for t in sentence[k:e]]
+        name = anchor[0] if len(anchor) == 1 and anchor[0].isdigit() and len(anchor[0]) == 6 else _SUM_ANCHORS.get(tuple(anchor))
+        if side is None or name is None or sentence[j - 1].word.lower() != side or not 0 < k - j <= 2 or \
+                any(t.tag == "St_loc1" and t.word.lower() == "from" for t in sentence[i:j]):
+            out.append(tok)
+            i += 1
+            continue
+        if e < len(sentence) and sentence[e].is_word and sentence[e].tag == "O" and sentence[e].word.lower() in ("stud", "one"):
+            e += 1
+        out.append(Token(f"{name}{'+' if side == 'right' else '-'}{_COUNTS[tok.word.lower()]}", "St_loc1", tok.coref))
+        i = e
+    return out
+
+
+def _labels_first(sentence: Phrase, glue: str) -> Phrase:
+    """A one-word value that says which, typed after its field's label ("same size" -> "size=same", "top row" ->
+    "row=top", "the left pile" -> "pile=left"; the front end's ``split_fields`` puts the words back in order)."""
+    from drywall_lab.nlu.normalise import DIGIT_WORDS, FIELD_LABELS
+
+    out: Phrase = []
+    i = 0
+    while i < len(sentence):
+        tok, nxt = sentence[i], sentence[i + 1] if i + 1 < len(sentence) else None
+        if (nxt is not None and tok.is_word and nxt.is_word and tok.tag not in ("O", *_ID_TAGS) and tok.word.isalpha()
+                and tok.word.lower() not in DIGIT_WORDS
+                and nxt.word.lower() in FIELD_LABELS and nxt.tag in ("O", tok.tag)
+                and (i == 0 or sentence[i - 1].tag != tok.tag)):
+            out.append(Token(f"{nxt.word}{glue}{tok.word}", tok.tag, tok.coref))
+            i += 2
+            continue
+        out.append(tok)
+        i += 1
+    return out
+
+
 def glued_fields(ch: Chooser, sentences: Sentences) -> Sentences:
     """Typed as a program or a terse form is: each run of words of one tag joined by "_" ("centre_line"; a position's
     now and then by "-": "3rd-from-right"), and a field's
-    label glued to the value after it by "=" or ":" ("stud=500104", "size=2x8"; the label takes the value's tag). The
-    front end's ``split_fields`` takes them apart again."""
+    label glued to the value after it by "=" or ":" ("stud=500104", "size=2x8"; the label takes the value's tag). Half
+    the time, a stud counted from the previous one or an id is written as a sum ("prev+2", "500104-1") and a one-word
+    value that says which comes after its label ("size=same", "row=top"). The front end's ``split_fields`` and
+    ``read_offsets`` take them apart again."""
+    from drywall_lab.nlu.normalise import DIGIT_WORDS, FIELD_LABELS
+
     glue = ch.rng.choice(["=", "=", ":"])
     position_joiner = ch.rng.choice(["_", "-"])
+    program = ch.chance(0.5)
     out: Sentences = []
     for sentence in sentences:
+        if program:
+            sentence = _labels_first(_written_sums(sentence), glue)
         runs = _glued_runs(sentence, position_joiner) if ch.chance(0.7) else list(sentence)
         new: Phrase = []
         for tok in runs:
             last = new[-1] if new else None
             if (last is not None and last.is_word and last.tag == "O" and last.word.lower() in FIELD_LABELS
-                    and tok.is_word and tok.tag != "O"):
+                    and tok.is_word and tok.tag != "O" and tok.word.lower() not in DIGIT_WORDS):  # not inside an id
                 new[-1] = Token(f"{last.word}{glue}{tok.word}", tok.tag, tok.coref)
             else:
                 new.append(tok)
@@ -754,11 +836,68 @@ def glued_fields(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
+# --- a value taken back -------------------------------------------------------------------------------------
+#: How a worker takes a value back and says the one meant (A the value taken back, B the one meant): broken off with
+#: or without a cue, or after a pause with a cue before or after the new value.
+REPAIR_FORMS = ("{a}- {b}", "{a}— {b}", "{a}- no, {b}", "{a}, er, {b}, sorry", "{a}, no, {b}", "{a}, I mean, {b}",
+                "{a} uh {b} sorry", "{a}, sorry, {b}", "{a} no {b}")
+_OTHER_SIDE = {"left": "right", "right": "left"}
+_OTHER_ROW = {"top": "bottom", "bottom": "top"}
+
+
+def _taken_back(rng: random.Random, tok: Token) -> str | None:
+    """A value of the same kind as ``tok``'s that it is not (an id, an ordinal, a side, a row), or None."""
+    low = tok.word.lower()
+    if _is_id(tok):
+        return low[:4] + rng.choice([f"{n:02d}" for n in range(13) if f"{n:02d}" != low[4:]])
+    if low in _OTHER_SIDE and tok.tag in ("St_loc1", "Dw_loc1"):
+        return _OTHER_SIDE[low]
+    if low in _OTHER_ROW and tok.tag in ("Hr_top", "Hr_btm"):
+        return _OTHER_ROW[low]
+    for table in (ORDINAL_WORDS, ORDINAL_DIGITS):
+        n = next((n for n, w in table.items() if w == low), None)
+        if n is not None and tok.tag in ("St_loc1", "Dw_loc1"):
+            return table[rng.choice([m for m in table if m != n])]
+    return None
+
+
+def value_repairs(ch: Chooser, sentences: Sentences) -> Sentences:
+    """One value said wrongly first and taken back (``REPAIR_FORMS``): "stud 500101, er, 500100, sorry", "four to
+    the left- right", "the bottom- no, top row", "the third, no, the fourth stud". The value taken back and the cues
+    are ``O``; the value meant keeps its tag (the final intention counts). The front end's
+    ``resolve_value_repairs`` drops what was taken back."""
+    spots = [(si, i, other) for si, sentence in enumerate(sentences) for i, tok in enumerate(sentence)
+             if tok.is_word and tok.tag != "O" and (other := _taken_back(ch.rng, tok)) is not None]
+    if not spots:
+        return sentences
+    si, i, other = ch.rng.choice(spots)
+    form = ch.rng.choice(REPAIR_FORMS)
+    before, after = form.split("{b}")
+    said: Phrase = []
+    for piece in before.replace("{a}", other).split():
+        if piece in (",",):
+            continue
+        word, comma = piece.rstrip(","), piece.endswith(",")
+        said.append(Token(word, "O", "O"))
+        if comma:
+            said.append(Token(",", None, None))
+    tail: Phrase = []
+    for piece in after.split():
+        if piece.startswith(","):
+            tail.append(Token(",", None, None))
+            piece = piece[1:]
+        if piece:
+            tail.append(Token(piece, "O", "O"))
+    out = [list(s) for s in sentences]
+    out[si][i:i + 1] = said + [out[si][i]] + tail
+    return out
+
+
 CHANNELS: dict[str, Channel] = {
     "restated_studs": restated_studs, "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk,
     "spoken_ids": spoken_ids, "shorthand": shorthand,
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
-    "code_switch": code_switch, "openers": openers, "glued_fields": glued_fields,
+    "code_switch": code_switch, "openers": openers, "glued_fields": glued_fields, "value_repairs": value_repairs,
 }
 #: A row whose target is said by a property ("the narrow one") instead of its size, in every split: drawn where the
 #: target is said (``field_generator.size_property_draw``), so not a function of sentences; a row records it like one.
@@ -780,7 +919,7 @@ CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, 
 HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: Held back whole and laid over the novel split's instructions at this rate, on top of their held-back channel or pair,
 #: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
-HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1}
+HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1, "value_repairs": 0.1}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))

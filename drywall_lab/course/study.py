@@ -279,6 +279,21 @@ def seed_finding(spread: pd.DataFrame, models: Sequence[str] = ("LSTM-M4", "BERT
     return " ".join(parts)
 
 
+def seed_sizes_finding(spread: pd.DataFrame, split: str = "validation") -> str:
+    """The BiLSTM-CRF against BERT at each training size the seed table has both of (M1 ... M4), over the seeds: which
+    is ahead on the mean of ``split``'s Acc_inst, and whether the seeds' ranges separate them; one sentence a size."""
+    lines = []
+    for size in ("M1", "M2", "M3", "M4"):
+        first, second = f"LSTM-{size}", f"BERT-{size}"
+        if first not in spread.index or second not in spread.index:
+            continue
+        a, b = spread.loc[first], spread.loc[second]
+        comparison = _spread_comparison(first, second, a, b, split)
+        lines.append(f"{size} ({int(a['training instructions'])} training instructions): {first} "
+                     f"{_spread_text(a, split)}, {second} {_spread_text(b, split)}; {comparison}.")
+    return "\n".join(lines) if lines else "The seed table has no size with both models."
+
+
 def coref_comparison(table3: pd.DataFrame, table5: pd.DataFrame, train_sizes: Mapping[str, int]) -> pd.DataFrame:
     """Table 5 against Table 3: BERT with the 15 co-reference labels (C) and with the 13 labels (M), validation
     Acc_inst and acc_task by training size, the paper's Acc_inst alongside."""

@@ -5,10 +5,12 @@ eight", "five double-oh one one two", "five hundred one-oh-eight") or split ("50
 plural ("one of the 2x8s"), a board's sides in metric ("1200 x 2400", "600 mm wide", "twelve hundred by twenty-four
 hundred": the feet they stand for), the site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields
 separated by ``|`` or ``->``), spoken disfluency (fillers, stutters, a false start broken off with a dash and
-repaired: "the four by- no, the two by eight"), and words of another language or dialect a crew mixes into English
-(Spanish, German, French, Portuguese, West African Pidgin, spoken English dialects: "la pila de la izquierda", "cuatro
-por ocho", "der mittlere Stapel", "stand am for stud", "that'n": ``data/lexicon/code_switch.tsv``). The paper's tagger
-(Sec. 3.1) learns surface forms from its corpus; a form it never met is a guess. This module reads every such form into one written form first, for training
+repaired: "the four by- no, the two by eight"; a value taken back by another of its kind: "stud 500101, er, 500100,
+sorry"), a stud written as a sum as a program has it ("stud=prev+2", "500104-1"), and words of another language or
+dialect a crew mixes into English (Spanish, German, French, Portuguese, Polish, West African Pidgin, Jamaican
+Creole, spoken English dialects: "la pila de la izquierda", "cuatro por ocho", "der mittlere Stapel", "stand am for
+stud", "that'n": ``data/lexicon/code_switch.tsv``). The paper's tagger (Sec. 3.1) learns surface forms from its
+corpus; a form it never met is a guess. This module reads every such form into one written form first, for training
 and prediction alike (``drywall_lab.corpus.field_generator`` writes its rows through it), so that a new voice
 reaches the tagger in words it knows.
 
@@ -27,7 +29,7 @@ from __future__ import annotations
 import csv
 import re
 import unicodedata
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Sequence
@@ -63,6 +65,7 @@ _DIGITS = re.compile(r"^\d+$")
 _SPLIT_ID = re.compile(r"^(\d{3})[-–.,](\d{3})$")
 _MARKED_ID = re.compile(r"^(?:#|no\.?|nr\.?|num\.?)(5\d{5})$", re.I)
 _BROKEN_OFF = re.compile(r"[\w'][-–—]+$")
+_PAUSE = re.compile(r"\w[,;]+$")
 #: What glues a form's or a program's fields into one word: "|", arrows, a colon before text, "=", brackets, "_", a
 #: leading "--" ("Stud:500104", "2x8->500106", "place(stud=500104", "centre_line", "--stack").
 _FIELD_SEPARATORS = re.compile(r"\s*(?:\||->|=>|→|⇒|—>|:(?=\S)|=|[()\[\]{}]|_|^--)\s*")
@@ -77,6 +80,11 @@ class Piece:
     word: str
     said: tuple[int, ...]
     broken_off: bool = False  #: the worker broke off after it ("by-"): a false start or a repair follows
+    paused: bool = False  #: a comma or a semicolon after it ("500101, er, 500100, sorry")
+    #: how a corpus row tags it, where one worker's word became several with different parts ("prev+2" -> "2 to the
+    #: right of the previous stud"): "" its source's tag, "O" none, "anchor" the anchor tag of its source's
+    #: relative tag (``St_loc1`` -> ``St_loc2``)
+    role: str = ""
 
 
 @dataclass(frozen=True)
@@ -100,15 +108,18 @@ class Normalised:
     words: tuple[str, ...]
     sources: tuple[tuple[int, ...], ...]
     changes: tuple[Change, ...]
+    roles: tuple[str, ...] = ()  #: each word's ``Piece.role`` (none: every word takes its source's tag)
 
     def tags_of_said(self, tags: Sequence[str]) -> list[str]:
-        """The tags of the worker's own words: each takes the tag of the word it became; a dropped word is ``O``."""
+        """The tags of the worker's own words: each takes the first tag other than ``O`` of the words it became
+        ("prev+2" -> "2 to the right of the previous stud": ``St_loc1``); a dropped word is ``O``."""
         if len(tags) != len(self.words):
             raise ValueError(f"{len(tags)} tags for {len(self.words)} normalised words")
         out = ["O"] * len(self.said)
         for tag, sources in zip(tags, self.sources):
             for i in sources:
-                out[i] = tag
+                if out[i] == "O":
+                    out[i] = tag
         return out
 
     def trace_steps(self) -> list[TraceStep]:
@@ -117,10 +128,16 @@ class Normalised:
 
     def tags_of_words(self, said_tags: Sequence[str]) -> list[str]:
         """The tags of the normalised words from the worker's words' tags (a corpus row's gold): each word takes the
-        first tag other than ``O`` among its sources."""
+        first tag other than ``O`` among its sources, or what its role makes of it (``Piece.role``)."""
         if len(said_tags) != len(self.said):
             raise ValueError(f"{len(said_tags)} tags for {len(self.said)} words")
-        return [next((said_tags[i] for i in sources if said_tags[i] != "O"), "O") for sources in self.sources]
+        tags = [next((said_tags[i] for i in sources if said_tags[i] != "O"), "O") for sources in self.sources]
+        for k, role in enumerate(self.roles):
+            if role == "O":
+                tags[k] = "O"
+            elif role == "anchor":
+                tags[k] = tags[k].replace("_loc1", "_loc2")
+        return tags
 
 
 # --- the lexicon ----------------------------------------------------------------------------------------
@@ -199,11 +216,17 @@ def joined_position(word: str) -> list[str] | None:
                                                           or {"left", "right", "end", "last"}.intersection(low)) else None
 
 
+#: Words that name the field a value fills in a form or a program ("stud=500104", "size=same", "row: top").
+FIELD_LABELS = frozenset({"stud", "panel", "sheet", "board", "pile", "stack", "row", "size", "edge", "line", "id",
+                          "side", "orient", "orientation", "placement"})
+
+
 def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A form's or a program's fields glued by a separator ("Stud:500104", "2x8->500106", "stud=500104",
     "place(panel", "centre_line") are words apart, and so are the words of a position typed as one with hyphens
-    ("3rd-from-right"). A separator said alone ("|", "->", "=") stays: the IM reads it as punctuation, a boundary
-    between fields."""
+    ("3rd-from-right"). A label whose value is one word that says which ("size=same", "row=top", "pile:left") is
+    read in the order people say it ("same size", "top row", "left pile"). A separator said alone ("|", "->", "=")
+    stays: the IM reads it as punctuation, a boundary between fields."""
     out: list[Piece] = []
     for p in pieces:
         glued = _FIELD_SEPARATORS.search(p.word) and any(c.isalnum() for c in p.word)
@@ -211,11 +234,54 @@ def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
             out.append(p)
             continue
         parts = [w for w in _FIELD_SEPARATORS.split(p.word) if w] if glued else [p.word]
+        k = len(parts) - 2  # the label and its value, the last two parts ("place(size=same")
+        if k >= 0 and parts[k].lower() in FIELD_LABELS and parts[k + 1].isalpha() and parts[k + 1].lower() != "id" \
+                and parts[k + 1].lower() not in DIGIT_WORDS and "_" not in p.word[p.word.lower().rfind(parts[k].lower()):]:
+            parts[k:k + 2] = parts[k + 1], parts[k]  # "size=same" -> "same size"
         words = [w for part in parts for word in tokenize(part) if any(c.isalnum() for c in word)
                  for w in joined_position(word) or [word]]
         if words != [p.word]:
             changes.append(Change("separator", p.word, " ".join(words)))
-        out += [Piece(w, p.said, p.broken_off and k == len(words) - 1) for k, w in enumerate(words)]
+        out += [Piece(w, p.said, p.broken_off and k == len(words) - 1, paused=p.paused and k == len(words) - 1)
+                for k, w in enumerate(words)]
+    return out
+
+
+#: A count added to or taken from a stud written as a sum ("prev+2", "500104-1", "last + 3"): the anchor, the sign, the
+#: count (at most two digits).
+_OFFSET = re.compile(r"^(prev|previous|last|500\d{3})?([+-])(\d{1,2})$", re.I)
+_OFFSET_ANCHORS = {"prev": ("the", "previous", "stud"), "previous": ("the", "previous", "stud"),
+                   "last": ("the", "last", "stud")}
+
+
+def read_offsets(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A stud written as a sum, as a program or a tablet form has it ("stud=prev+2", "500104-1", "prev + 3"), read in
+    words: "2 to the right of the previous stud", "1 to the left of 500104". "prev" or "last" may stand apart from the
+    sign ("prev +2", "prev + 2", "last -1"), an id only from "+N" ("500104 +2": "500321 - 1" is more likely a dash
+    between fields); a sign with no anchor ("+2") is left as written (counted from what?)."""
+    out: list[Piece] = []
+    i = 0
+    while i < len(pieces):
+        match, n = None, 0
+        for n in (1, 2, 3):  # "prev+2"; "prev" "+2"; "prev" "+" "2"
+            match = _OFFSET.match("".join(p.word for p in pieces[i:i + n])) if i + n <= len(pieces) else None
+            if match:
+                break
+        if match and n > 1 and (match.group(2) == "-" or n == 3) and (match.group(1) or "").isdigit():
+            match = None  # "500321 - 1", "500104 + 2" apart: a dash between fields, or an id and a count
+        if not match or not match.group(1):
+            out.append(pieces[i])
+            i += 1
+            continue
+        anchor, sign, count = match.groups()
+        said_as = _OFFSET_ANCHORS.get(anchor.lower(), ("", anchor))
+        words = [(count, ""), ("to", ""), ("the", ""), ("right" if sign == "+" else "left", ""), ("of", "O"),
+                 *((w, "O" if w in ("the", "stud") else "anchor") for w in said_as if w)]
+        span = pieces[i:i + n]
+        changes.append(Change("offset", " ".join(p.word for p in span), " ".join(w for w, _ in words)))
+        said = tuple(k for p in span for k in p.said)
+        out += [Piece(w, said, span[-1].broken_off and k == len(words) - 1, role=role) for k, (w, role) in enumerate(words)]
+        i += n
     return out
 
 
@@ -263,7 +329,8 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
         changes.append(Change("shorthand", p.word, "" if reading == "-" else reading))
         if reading != "-":
             words = reading.split()
-            out += [Piece(w, p.said, p.broken_off and k == len(words) - 1) for k, w in enumerate(words)]
+            out += [Piece(w, p.said, p.broken_off and k == len(words) - 1, paused=p.paused and k == len(words) - 1)
+                    for k, w in enumerate(words)]
     return out
 
 
@@ -278,7 +345,8 @@ def translate_code_switch(pieces: list[Piece], changes: list[Change],
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
-        n = next((n for n in range(min(longest, len(pieces) - i), 0, -1) if tuple(folded[i:i + n]) in table), 0)
+        n = next((n for n in range(min(longest, len(pieces) - i), 0, -1) if tuple(folded[i:i + n]) in table
+                  and (n > 1 or folded[i] not in DIGITS_ONLY_IN_A_RUN or _in_foreign_number(folded, i, lexicon))), 0)
         if not n:
             out.append(pieces[i])
             i += 1
@@ -286,9 +354,44 @@ def translate_code_switch(pieces: list[Piece], changes: list[Change],
         span, reading = pieces[i:i + n], table[tuple(folded[i:i + n])]
         changes.append(Change("code switch", " ".join(p.word for p in span), " ".join(reading)))
         said = tuple(k for p in span for k in p.said)
-        out += [Piece(w, said, span[-1].broken_off and k == len(reading) - 1) for k, w in enumerate(reading)]
+        out += [Piece(w, said, span[-1].broken_off and k == len(reading) - 1, paused=span[-1].paused and
+                      k == len(reading) - 1) for k, w in enumerate(reading)]
         i += n
     return out
+
+
+#: Digit words of the code-switch lexicon that mean something else outside a number ("um": one in Portuguese, a filler
+#: in English; "meia": six in a Portuguese number, "half" elsewhere): read as the digit only inside a number said in
+#: their language (``_in_foreign_number``).
+DIGITS_ONLY_IN_A_RUN = frozenset({"um", "meia"})
+
+
+@lru_cache(maxsize=4)
+def _foreign_digits(lexicon: Path | str = CODE_SWITCH_PATH) -> dict[str, frozenset[str]]:
+    """Each folded one-word form of the code-switch lexicon read as a digit, with the languages that say it so."""
+    out: dict[str, set[str]] = {}
+    for form, reading, language in read_code_switch(lexicon):
+        if " " not in form and reading in DIGIT_WORDS:
+            out.setdefault(fold(form), set()).add(language)
+    return {form: frozenset(languages) for form, languages in out.items()}
+
+
+def _in_foreign_number(folded: Sequence[str], i: int, lexicon: Path | str = CODE_SWITCH_PATH) -> bool:
+    """Whether the word at ``i`` (one of ``DIGITS_ONLY_IN_A_RUN``) is in a run of three or more number words that has
+    another digit word of its language ("cinco zero zero um zero meia"; not "five oh oh one um oh three")."""
+    digits = _foreign_digits(lexicon)
+    languages = digits[folded[i]]
+
+    def number(word: str) -> bool:
+        return word in DIGIT_WORDS or word in digits
+
+    start, end = i, i
+    while start > 0 and number(folded[start - 1]):
+        start -= 1
+    while end < len(folded) - 1 and number(folded[end + 1]):
+        end += 1
+    return end - start >= 2 and any(k != i and folded[k] not in DIGITS_ONLY_IN_A_RUN and languages & digits.get(folded[k], frozenset())
+               for k in range(start, end + 1))
 
 
 @lru_cache(maxsize=16)
@@ -311,15 +414,16 @@ def _starts(pieces: Sequence[Piece], i: int, phrases: tuple[tuple[str, ...], ...
 
 
 def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
-    """Fillers ("um", "uh", "you know") are dropped; a word broken off before one stays broken off."""
+    """Fillers ("um", "uh", "you know") are dropped; the word before one is paused after, and a word broken off
+    before one stays broken off."""
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
         n = _starts(pieces, i, FILLERS)
         if n:
             changes.append(Change("filler", " ".join(p.word for p in pieces[i:i + n]), ""))
-            if out and pieces[i + n - 1].broken_off:
-                out[-1] = Piece(out[-1].word, out[-1].said, True)
+            if out:  # a filler is a pause ("500101 er 500100, sorry"); a word broken off before one stays so
+                out[-1] = replace(out[-1], broken_off=out[-1].broken_off or pieces[i + n - 1].broken_off, paused=True)
             i += n
             continue
         out.append(pieces[i])
@@ -437,7 +541,8 @@ def _id_piece(run: Sequence[Piece], digits: str, changes: list[Change], also: Se
     words = [*run, *also]
     if len(words) > 1 or words[0].word != digits:
         changes.append(Change("id", " ".join(p.word for p in words), digits))
-    return Piece(digits, tuple(s for p in words for s in p.said), words[-1].broken_off)
+    return Piece(digits, tuple(s for p in words for s in p.said), words[-1].broken_off, words[-1].paused,
+                 words[0].role)
 
 
 def read_ids(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
@@ -637,9 +742,62 @@ def resolve_false_starts(pieces: list[Piece], changes: list[Change]) -> list[Pie
     return out
 
 
+#: Values a worker takes back by saying another of the same kind: an id, an ordinal, a side, a row.
+_SIDE_VALUES = frozenset({"left", "right"})
+_ROW_VALUES = frozenset({"top", "bottom"})
+#: Nouns a value may carry before the break ("the bottom row— top row").
+_VALUE_NOUNS = frozenset({"row", "stud", "pile", "stack", "one", "panel", "sheet", "line", "side"})
+
+
+def _value_kind(word: str) -> str | None:
+    low = word.lower()
+    if ID_PATTERN.match(low):
+        return "id"
+    if _ORDINAL.match(low) and low != "last":
+        return "ordinal"
+    return "side" if low in _SIDE_VALUES else "row" if low in _ROW_VALUES else None
+
+
+def resolve_value_repairs(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A value taken back by another of the same kind said right after it (the final intention counts): an id, an
+    ordinal, a side or a row, broken off ("four studs to the left— right", "the bottom row— top row"), followed by a
+    repair cue ("the third, no, the fourth", "500104 I mean 500105"), or by a pause (a comma, a filler) and the new
+    value with a cue after it ("stud 500101, er, 500100, sorry"). The old value, its noun and the cues are dropped.
+    Two values of a kind said without a break or a cue ("500104, 500105") are left for the IM (two values: a
+    question)."""
+    out: list[Piece] = []
+    i = 0
+    while i < len(pieces):
+        kind = _value_kind(pieces[i].word)
+        j = i + 1 if kind and i + 1 < len(pieces) and pieces[i + 1].word.lower() in _VALUE_NOUNS else i
+        a = pieces[j] if kind else None
+        if a is None or j + 1 >= len(pieces):
+            out.append(pieces[i])
+            i += 1
+            continue
+        cue = _starts(pieces, j + 1, REPAIR_CUES)
+        b = j + 1 + cue + (j + 1 + cue < len(pieces) and pieces[j + 1 + cue].word.lower() in ("the", "a"))
+        end = b + 1 + (b + 1 < len(pieces) and pieces[b + 1].word.lower() in _VALUE_NOUNS)  # after "bottom row"
+        after = _starts(pieces, end, REPAIR_CUES) if b < len(pieces) else 0
+        if after and end + after < len(pieces) and _value_kind(pieces[end + after].word) == kind:
+            after = 0  # "left— right, I mean right": the cue leads the next repair
+        if b >= len(pieces) or _value_kind(pieces[b].word) != kind or not (a.broken_off or cue or (a.paused and after)):
+            out.append(pieces[i])
+            i += 1
+            continue
+        article = b > j + 1 + cue and bool(out) and out[-1].word.lower() in ("the", "a")
+        changes.append(Change("repair", " ".join(p.word for p in pieces[i:(b if article else j + 1 + cue)]), ""))
+        i = b if article else j + 1 + cue  # "the third, no, the fourth": one article
+        if after:  # the cue after the new value: "500100, sorry"
+            out += pieces[i:end]
+            changes.append(Change("repair", " ".join(p.word for p in pieces[end:end + after]), ""))
+            i = end + after
+    return out
+
+
 #: The front end's steps, in order.
-STEPS: tuple[Step, ...] = (split_fields, translate_code_switch, expand_shorthand, drop_fillers, read_ids,
-                           resolve_false_starts, metric_sizes, singular_sizes)
+STEPS: tuple[Step, ...] = (split_fields, read_offsets, translate_code_switch, expand_shorthand, drop_fillers, read_ids,
+                           resolve_value_repairs, resolve_false_starts, metric_sizes, singular_sizes)
 
 
 #: Written labels that only introduce the number after them ("stud no. 500104"); their full stop is what tells them
@@ -658,7 +816,7 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
         for word in tokenize(raw):
             broken_off = bool(_BROKEN_OFF.search(raw))
             read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word
-            pieces.append(Piece(read, (len(said),), broken_off))
+            pieces.append(Piece(read, (len(said),), broken_off, paused=bool(_PAUSE.search(raw))))
             said.append(word)
     return said, pieces
 
@@ -677,7 +835,8 @@ def normalise(text: str) -> Normalised:
     changes: list[Change] = []
     for step in STEPS:
         pieces = step(pieces, changes)
-    return Normalised(tuple(said), tuple(p.word for p in pieces), tuple(p.said for p in pieces), tuple(changes))
+    return Normalised(tuple(said), tuple(p.word for p in pieces), tuple(p.said for p in pieces), tuple(changes),
+                      tuple(p.role for p in pieces))
 
 
 def normalise_text(text: str) -> str:

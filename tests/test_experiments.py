@@ -20,7 +20,9 @@ from drywall_lab.nlu.experiments import (
     MINILM_LEARNING_RATE,
     MINILM_WARMUP_RATIO,
     PAPER_TABLE3,
+    SEED_COLUMNS,
     ExperimentSettings,
+    merge_seed_rows,
     run_paper_experiment,
     run_seed_study,
     seed_summary,
@@ -96,6 +98,20 @@ def test_seed_study_trains_each_model_once_a_seed_and_summarises_the_spread(tmp_
     assert summary.loc["LSTM-M4", ("novel_acc_inst", "mean")] == pytest.approx(table.novel_acc_inst.mean(), abs=1e-4)
     assert summary.loc["LSTM-M4", ("validation_acc_inst", "max")] == pytest.approx(table.validation_acc_inst.max(), abs=1e-4)
     assert "python -m drywall_lab experiment seeds" in (tmp_path / "seeds.md").read_text()
+
+
+def test_a_run_of_some_models_keeps_the_other_models_rows_in_the_studys_order(tmp_path):
+    path = tmp_path / "seeds.csv"
+    row = dict(zip(SEED_COLUMNS, ["LSTM-M4", 0, 316, 0.9, 0.3, 0.7, 50.0]))
+    assert merge_seed_rows(path, pd.DataFrame([row])).to_dict("records") == [row]  # no file yet: the new rows
+    old = pd.DataFrame([{**row, "model": m, "seed": k} for m in ("BERT-M4", "LSTM-M1", "BERT-M2") for k in (0, 1)])
+    old.to_csv(path, index=False)
+    new = pd.DataFrame([{**row, "model": "BERT-M2", "seed": k, "validation_acc_inst": 0.5} for k in (0, 1, 2)])
+    merged = merge_seed_rows(path, new)
+    assert merged.model.tolist() == ["LSTM-M1"] * 2 + ["BERT-M2"] * 3 + ["BERT-M4"] * 2  # SEED_MODELS order
+    assert (merged[merged.model == "BERT-M2"].validation_acc_inst == 0.5).all()  # the old BERT-M2 rows replaced
+    with pytest.raises(ValueError, match="no such model in the study: BERT-M9"):
+        run_seed_study(tmp_path, models=("BERT-M9",), log=lambda _: None)
 
 
 def test_seed_zero_is_set_next_to_the_study_run(tmp_path):

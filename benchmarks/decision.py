@@ -7,10 +7,14 @@ the thresholds before were chosen on both splits whole).
 
 1. **Likelihood** (``decision.fit_weights``): each step of the fit halves read against its own intended history,
    and the weights of least negative log-likelihood of the intended outcome fitted on the candidates it gives.
-2. **Cost** (``decision.tune_weights``): from there, a coordinate search for the least
+2. **Cost** (``decision.tune_weights``): from there and from the shipped weights, a coordinate search for the least
    ``WRONG_ACTION_COST`` x wrong-action rate + over-refusal rate (a move must gain more than one instruction's
    worth, so that the search does not fit noise), the fit halves' episodes played as ``run`` plays
-   them (each step against the commands the pipeline itself acted on before it, questions left unanswered). The costs are written down (``decision.DecisionCosts``), not chosen.
+   them (each step against the commands the pipeline itself acted on before it, questions left unanswered). The costs
+   of a refusal and a question are written down (``decision.DecisionCosts``), not chosen; the cost of a wrong move is
+   the least of ``WRONG_ACTION_COSTS`` whose fit keeps the held-out halves at ``WRONG_ACTION_BOUND`` (0.5%, the
+   issue's bound) wrong actions or fewer (``choose_wrong_cost``): a fit that moves wrongly more often on episodes it
+   did not see is one that learnt its fit halves.
 3. **Options** (``decision.conformal_floor``): on the held-out halves, the intended command's probability at each
    step on which the fitted decision does not act (the steps a question is about); the floor at which a question's
    options hold it ``COVERAGE`` of the time. Measured on the hand-written sets (``benchmarks/dialogue.py``), where
@@ -47,7 +51,12 @@ from results_file import add_results_options, command_line, results_path, write_
 
 RESULTS = Path(__file__).resolve().parent / "results" / "decision.md"
 SPLITS = ("field-validation", "field-novel")
-WRONG_ACTION_COST = 10
+#: The costs of a wrong move tried, least first: the first whose fit keeps the held-out halves' wrong-action rate at
+#: ``WRONG_ACTION_BOUND`` or less on every split is written down (issue 30: at most 0.5% wrong on the generated
+#: novel split). A fit on the fit halves can move wrongly more often on episodes it did not see.
+WRONG_ACTION_COSTS = (10, 20, 40)
+WRONG_ACTION_BOUND = 0.005
+WRONG_ACTION_COST = WRONG_ACTION_COSTS[0]
 ASK_COSTS = (0.1, 0.3, 0.5, 1.0)
 COVERAGE = 0.98
 SWEEPS = 2
@@ -99,8 +108,8 @@ class Readings:
         return out
 
 
-def cost(scores: dict[str, float]) -> float:
-    return WRONG_ACTION_COST * scores["wrong_action_rate"] + scores["over_refusal_rate"]
+def cost(scores: dict[str, float], wrong: float = WRONG_ACTION_COST) -> float:
+    return wrong * scores["wrong_action_rate"] + scores["over_refusal_rate"]
 
 
 def row_examples(readings: Readings, settings: DecisionSettings) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -114,16 +123,47 @@ def row_examples(readings: Readings, settings: DecisionSettings) -> list[tuple[n
 
 
 def batch_cost(parts: list[Readings], settings: DecisionSettings) -> float:
-    """The mean over ``parts`` of ``WRONG_ACTION_COST`` x wrong-action rate + over-refusal rate, episodes played."""
-    return sum(cost(decision_scores(r.rows, r.decide(settings))) for r in parts) / len(parts)
+    """The mean over ``parts`` of the settings' cost of a wrong move x wrong-action rate + over-refusal rate,
+    episodes played."""
+    return sum(cost(decision_scores(r.rows, r.decide(settings)), settings.costs.wrong) for r in parts) / len(parts)
 
 
-def fit(parts: list[Readings], sweeps: int = SWEEPS, off: tuple = ()) -> tuple[DecisionSettings, list[dict]]:
-    """Steps 1 and 2 of the module docstring on ``parts`` (the fit halves)."""
-    start = replace(START, off=off)
+def fit(parts: list[Readings], sweeps: int = SWEEPS, off: tuple = (),
+        wrong: float = WRONG_ACTION_COST) -> tuple[DecisionSettings, list[dict]]:
+    """Steps 1 and 2 of the module docstring on ``parts`` (the fit halves), a wrong move costing ``wrong``: the
+    coordinate search runs from the likelihood fit and from the shipped weights (``DEFAULT_SETTINGS``, a warm start:
+    the cost is flat and the search myopic, so one start can stop where the other goes on), and the settings of
+    lower cost are kept (the likelihood fit's on a tie)."""
+    start = replace(START, off=off, costs=replace(START.costs, wrong=wrong))
     likely = replace(start, weights=fit_weights([e for r in parts for e in row_examples(r, start)], off=off))
+    shipped = replace(start, weights=tuple((n, 0.0 if n in off else w) for n, w in DEFAULT_SETTINGS.weights))
     one_instruction = max(1.0 / len(r.rows) for r in parts) / len(parts)  # one over-refusal more or less
-    return tune_weights(likely, lambda s: batch_cost(parts, s), sweeps, min_gain=1.5 * one_instruction)
+    runs = [tune_weights(s, lambda s: batch_cost(parts, s), sweeps, min_gain=1.5 * one_instruction)
+            for s in (likely, shipped)]
+    for label, (_, moves) in zip(("the likelihood fit", "the shipped weights"), runs):
+        for move in moves:
+            move["start"] = label
+    return min(runs, key=lambda run: batch_cost(parts, run[0]))
+
+
+def choose_wrong_cost(fit_parts: list[Readings], held: dict[str, Readings], sweeps: int = SWEEPS
+                      ) -> tuple[DecisionSettings, list[dict], pd.DataFrame]:
+    """Fit with each cost of a wrong move of ``WRONG_ACTION_COSTS``, least first, and keep the first whose held-out
+    halves all move wrongly at ``WRONG_ACTION_BOUND`` or less (else the one with the fewest wrong moves there). The
+    settings, the kept fit's moves and a table of every fit's held-out figures."""
+    fits, rows = [], []
+    for wrong in WRONG_ACTION_COSTS:
+        settings, moves = fit(fit_parts, sweeps, wrong=wrong)
+        scores = {split: decision_scores(r.rows, r.decide(settings)) for split, r in held.items()}
+        worst = max(s["wrong_action_rate"] for s in scores.values())
+        fits.append((worst, wrong, settings, moves))
+        rows += [{"cost of a wrong move": wrong, "split": split, **s} for split, s in scores.items()]
+        if worst <= WRONG_ACTION_BOUND:
+            break
+    kept = next((f for f in fits if f[0] <= WRONG_ACTION_BOUND), min(fits, key=lambda f: (f[0], f[1])))
+    table = pd.DataFrame(rows)
+    table["kept"] = table["cost of a wrong move"] == kept[1]
+    return kept[2], kept[3], table
 
 
 def truth_probabilities(readings: Readings, settings: DecisionSettings) -> list[float]:
@@ -178,7 +218,8 @@ def main(argv: list[str] | None = None) -> int:
                 for s in SPLITS}
     fit_parts = [r.half(0) for r in readings.values()]
     held = {f"{s} (held out)": r.half(1) for s, r in readings.items()}
-    chosen, moves = fit(fit_parts, 1 if args.quick else SWEEPS)
+    chosen, moves, wrong_costs = choose_wrong_cost(fit_parts, held, 1 if args.quick else SWEEPS)
+    fmt = lambda x: f"{x:.4f}"  # noqa: E731
     calibration = [p for r in held.values() for p in truth_probabilities(r, chosen)]
     chosen = replace(chosen, option_floor=conformal_floor(calibration, COVERAGE))
     compare, coverage_rows = [], []
@@ -204,19 +245,21 @@ def main(argv: list[str] | None = None) -> int:
             a != outcome_of(d.interpretation) for split, r in readings.items()
             for a, d in zip(shipped[split], r.decide(off)))
         ablation.append(row)
-    fmt = lambda x: f"{x:.4f}"  # noqa: E731
     weights = pd.DataFrame([{"feature": n, "weight": w, "what it says": FEATURES[n]} for n, w in chosen.weights])
     lines = ["# The decision: fitted weights and calibrated options (`benchmarks/decision.py`)",
              "", f"**Command:** `{command_line('decision.py', (argv if argv is not None else sys.argv[1:]))}`", "",
              f"**Tagger:** {args.tagger or 'the shipped tagger'}", "", *machine.markdown_lines(), "",
              f"Splits: {', '.join(f'{s} ({len(r.rows)} instructions)' for s, r in readings.items())}, each cut in "
              f"two halves by episode. Weights fitted on the fit halves (likelihood, then {1 if args.quick else SWEEPS} "
-             f"sweep(s) of coordinate search for the least {WRONG_ACTION_COST} x wrong-action rate + over-refusal "
-             f"rate); the options floor calibrated on the held-out halves' steps not acted on for {COVERAGE:.0%} "
+             f"sweep(s) of coordinate search for the least {chosen.costs.wrong:g} x wrong-action rate + over-refusal "
+             f"rate, the cost of a wrong move the least of {', '.join(map(str, WRONG_ACTION_COSTS))} whose fit keeps "
+             f"the held-out halves at {WRONG_ACTION_BOUND:.1%} wrong actions or fewer); the options floor calibrated on the held-out halves' steps not acted on for {COVERAGE:.0%} "
              f"coverage ({len(calibration)} instructions). Costs written down: {chosen.costs}.", "",
              "## Choice", "", "```", f"chosen={settings_literal(chosen)}", "```", "",
+             "## The cost of a wrong move (each fitted; held-out halves)", "", "```",
+             wrong_costs.to_string(index=False, float_format=fmt), "```", "",
              "## Fitted weights", "", "```", weights.to_string(index=False), "```", "",
-             "## The coordinate search (fit halves' cost)", "", "```",
+             "## The coordinate search (fit halves' cost; the start kept)", "", "```",
              pd.DataFrame(moves).to_string(index=False, float_format=fmt), "```", "",
              "## Best path, the tagger's probability alone and the fitted decision", "",
              "The held-out halves first, then the whole splits (whose fit halves the fit saw).", "", "```",

@@ -3,7 +3,7 @@
 The candidates: each seed model of the shipped recipe (``benchmarks/field_seeds.py`` trains them into
 ``build/field_seeds/seed<N>``) alone, and the ensemble of every two or more of them
 (``drywall_lab.nlu.ensemble.CrfEnsembleTagger``: the members' CRF scores averaged; ``seed0+seed1``). Each is scored where the field sets play no part, as the decision layer's
-thresholds were chosen (``benchmarks/decision.py``): the decision cost (``WRONG_ACTION_COST`` x wrong-action rate
+thresholds were chosen (``benchmarks/decision.py``): the decision cost (the cost of a wrong move x wrong-action rate
 + over-refusal rate, the mean over the generated field corpus's validation and novel splits and the paper corpus's
 novel split, the episodes played as ``run`` plays them, at ``DEFAULT_SETTINGS``) and the paper corpus's test
 split's Acc_inst (the issue's 99.4% target). The shipped tagger is the candidate of least cost among those that keep the target
@@ -62,7 +62,7 @@ def generated_figures(tagger, limit: int | None) -> dict[str, float]:
     for split in CHOICE_SPLITS:
         rows = split_rows(split)[:limit]
         scores = decision_scores(rows, Readings(rows, tagger, DEFAULT_SETTINGS.k).decide(DEFAULT_SETTINGS))
-        costs.append(cost(scores))
+        costs.append(cost(scores, DEFAULT_SETTINGS.costs.wrong))
         out.update({f"{split} {key}": value for key, value in scores.items() if key != "coverage"})
     out["cost"] = sum(costs) / len(costs)
     test = split_rows("test")[:limit]

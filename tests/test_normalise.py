@@ -275,6 +275,8 @@ def test_a_label_typed_before_a_one_word_value_is_read_in_spoken_order(said, rea
     ("flat in the bottom row— top row", "flat in the top row"),  # broken off, no cue: the value and its noun
     ("the third, no, the fourth stud", "the fourth stud"),
     ("top or the- the bottom row", "top or the bottom row"),  # two things offered: a question, not a repair
+    ("on stud 500105— no, one more over to the right, 500106", "on stud 500106"),  # and how the new lies from it
+    ("stud 500109 no two over to the left 500107", "stud 500107"),
     ("on stud 500104, 500105", "on stud 500104 500105"),  # no break, no cue: two studs, for the IM to ask
     ("put it on the left, right?", "put it on the left right"),  # a tag question, not a repair
 ])

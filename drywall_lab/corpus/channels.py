@@ -863,8 +863,9 @@ def _taken_back(rng: random.Random, tok: Token) -> str | None:
 
 def value_repairs(ch: Chooser, sentences: Sentences) -> Sentences:
     """One value said wrongly first and taken back (``REPAIR_FORMS``): "stud 500101, er, 500100, sorry", "four to
-    the left- right", "the bottom- no, top row", "the third, no, the fourth stud". The value taken back and the cues
-    are ``O``; the value meant keeps its tag (the final intention counts). The front end's
+    the left- right", "the bottom- no, top row", "the third, no, the fourth stud"; a stud's id now and then with how
+    the new one lies from the old ("500105- no, one more over to the right, 500106"). The value taken back, the cues
+    and such words are ``O``; the value meant keeps its tag (the final intention counts). The front end's
     ``resolve_value_repairs`` drops what was taken back."""
     spots = [(si, i, other) for si, sentence in enumerate(sentences) for i, tok in enumerate(sentence)
              if tok.is_word and tok.tag != "O" and (other := _taken_back(ch.rng, tok)) is not None]
@@ -872,6 +873,15 @@ def value_repairs(ch: Chooser, sentences: Sentences) -> Sentences:
         return sentences
     si, i, other = ch.rng.choice(spots)
     form = ch.rng.choice(REPAIR_FORMS)
+    meant = sentences[si][i]
+    if meant.tag == "ID_stud" and _is_id(meant) and ch.chance(0.3):  # "500105- no, one more over to the right, 500106"
+        d = ch.rng.choice([-3, -2, -1, 1, 2, 3])
+        if 500100 <= int(meant.word) - d <= 500112:
+            other = str(int(meant.word) - d)
+            side = "right" if d > 0 else "left"
+            rel = ch.rng.choice([f"{NUMBER_WORDS[abs(d)]} more over to the {side}", f"{NUMBER_WORDS[abs(d)]} over to the {side}"]
+                                + (["the next one", f"the next one to the {side}"] if abs(d) == 1 else []))
+            form = ch.rng.choice(["{a}- no, " + rel + ", {b}", "{a}, no, " + rel + ", {b}", "{a}— sorry, " + rel + " {b}"])
     before, after = form.split("{b}")
     said: Phrase = []
     for piece in before.replace("{a}", other).split():

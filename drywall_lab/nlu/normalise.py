@@ -758,11 +758,26 @@ def _value_kind(word: str) -> str | None:
     return "side" if low in _SIDE_VALUES else "row" if low in _ROW_VALUES else None
 
 
+#: Words that say how a repaired id lies from the one taken back ("one more over to the right", "the next one").
+_RELATION_WORDS = frozenset({"one", "two", "three", "1", "2", "3", "more", "over", "to", "the", "right", "left", "next",
+                             "further", "along"})
+
+
+def _told_from_the_old(pieces: Sequence[Piece], k: int) -> int:
+    """How many words from ``k`` say how a new id lies from the one taken back before it ("one more over to the
+    right" before "500106"): 0 where no id follows within a few such words."""
+    n = 0
+    while k + n < len(pieces) and n <= 6 and pieces[k + n].word.lower() in _RELATION_WORDS:
+        n += 1
+    return n if 0 < n <= 6 and k + n < len(pieces) and ID_PATTERN.match(pieces[k + n].word) else 0
+
+
 def resolve_value_repairs(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A value taken back by another of the same kind said right after it (the final intention counts): an id, an
     ordinal, a side or a row, broken off ("four studs to the left— right", "the bottom row— top row"), followed by a
     repair cue ("the third, no, the fourth", "500104 I mean 500105"), or by a pause (a comma, a filler) and the new
-    value with a cue after it ("stud 500101, er, 500100, sorry"). The old value, its noun and the cues are dropped.
+    value with a cue after it ("stud 500101, er, 500100, sorry"). The old value, its noun and the cues are dropped,
+    and so are the words that say how a new id lies from the old ("500105- no, one more over to the right, 500106").
     Two values of a kind said without a break or a cue ("500104, 500105") are left for the IM (two values: a
     question)."""
     out: list[Piece] = []
@@ -776,6 +791,11 @@ def resolve_value_repairs(pieces: list[Piece], changes: list[Change]) -> list[Pi
             i += 1
             continue
         cue = _starts(pieces, j + 1, REPAIR_CUES)
+        told = _told_from_the_old(pieces, j + 1 + cue) if kind == "id" and cue else 0
+        if told:  # "500105- no, one more over to the right, 500106": the new id, and how it lies from the old
+            changes.append(Change("repair", " ".join(p.word for p in pieces[i:j + 1 + cue + told]), ""))
+            i = j + 1 + cue + told
+            continue
         b = j + 1 + cue + (j + 1 + cue < len(pieces) and pieces[j + 1 + cue].word.lower() in ("the", "a"))
         end = b + 1 + (b + 1 < len(pieces) and pieces[b + 1].word.lower() in _VALUE_NOUNS)  # after "bottom row"
         after = _starts(pieces, end, REPAIR_CUES) if b < len(pieces) else 0

@@ -42,11 +42,14 @@ ones' words and phrasings: a BiLSTM-CRF learns from few examples which tag each 
 little of the general English that pre-training brings. Over three seeds (``results/paper/seeds.md``) even the gap at 316 is
 not firm: BERT-M4 97.05% against LSTM-M4 94.73% on the mean (2.32 points), and the ranges overlap (LSTM-M4's best
 seed, 96.84%, is above BERT-M4's worst, 96.20%); on the novel split the two are level within the seeds' spread
-(33.67% and 34.50%).""",
+(33.67% and 34.50%). At the other sizes the BiLSTM-CRF is ahead on the validation mean (by 0.42, 0.42 and 1.27
+points at 1,268, 948 and 632 instructions), again within what the seed alone moves.""",
     2: """By Acc_inst BERT-M1 is ahead on the novel split (54.00% against LSTM-M1's 50.50%), and by acc_task too
 (89.00% against 80.50%). At the other sizes the orders do differ: M3 has the BiLSTM-CRF ahead on Acc_inst (40.50%
 against 40.00%) but BERT ahead on acc_task (79.50% against 71.00%); M2 has the BiLSTM-CRF ahead on Acc_inst and
-the two level on acc_task. Acc_inst counts any wrong tag; acc_task only the mistakes that change the robot's
+the two level on acc_task. One run each does not settle any of it: over three seeds (``results/paper/seeds.md``)
+BERT-M1 has 48.33% on the novel split's mean against LSTM-M1's 48.67%, and at every size the two models' seeds
+overlap on the novel split. Acc_inst counts any wrong tag; acc_task only the mistakes that change the robot's
 command. A tagger may make more mistakes that do not matter to the robot and fewer that do: Acc_inst measures the
 tagging, acc_task what the robot does, and for the robot acc_task is the figure that counts.""",
     3: """No. Table 5's co-reference models (BERT-C) are below BERT-M at 3 of the 4 sizes and level at 632:

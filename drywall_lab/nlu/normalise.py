@@ -236,7 +236,7 @@ def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
         parts = [w for w in _FIELD_SEPARATORS.split(p.word) if w] if glued else [p.word]
         k = len(parts) - 2  # the label and its value, the last two parts ("place(size=same")
         if k >= 0 and parts[k].lower() in FIELD_LABELS and parts[k + 1].isalpha() and parts[k + 1].lower() != "id" \
-                and parts[k + 1].lower() not in DIGIT_WORDS and "_" not in p.word[p.word.lower().rfind(parts[k].lower()):]:
+                and parts[k + 1].lower() not in DIGIT_WORDS:
             parts[k:k + 2] = parts[k + 1], parts[k]  # "size=same" -> "same size"
         words = [w for part in parts for word in tokenize(part) if any(c.isalnum() for c in word)
                  for w in joined_position(word) or [word]]

@@ -143,7 +143,7 @@ def fit(parts: list[Readings], sweeps: int = SWEEPS, off: tuple = (),
     for label, (_, moves) in zip(("the likelihood fit", "the shipped weights"), runs):
         for move in moves:
             move["start"] = label
-    return min(runs, key=lambda run: batch_cost(parts, run[0]))
+    return min(runs, key=lambda run: run[1][-1]["cost"])  # a search's last move kept has its settings' cost
 
 
 def choose_wrong_cost(fit_parts: list[Readings], held: dict[str, Readings], sweeps: int = SWEEPS

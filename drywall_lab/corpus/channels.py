@@ -882,25 +882,15 @@ def value_repairs(ch: Chooser, sentences: Sentences) -> Sentences:
             rel = ch.rng.choice([f"{NUMBER_WORDS[abs(d)]} more over to the {side}", f"{NUMBER_WORDS[abs(d)]} over to the {side}"]
                                 + (["the next one", f"the next one to the {side}"] if abs(d) == 1 else []))
             form = ch.rng.choice(["{a}- no, " + rel + ", {b}", "{a}, no, " + rel + ", {b}", "{a}— sorry, " + rel + " {b}"])
-    before, after = form.split("{b}")
-    said: Phrase = []
-    for piece in before.replace("{a}", other).split():
-        if piece in (",",):
-            continue
-        word, comma = piece.rstrip(","), piece.endswith(",")
-        said.append(Token(word, "O", "O"))
-        if comma:
-            said.append(Token(",", None, None))
-    tail: Phrase = []
-    for piece in after.split():
-        if piece.startswith(","):
-            tail.append(Token(",", None, None))
-            piece = piece[1:]
-        if piece:
-            tail.append(Token(piece, "O", "O"))
+    before, after = (_untagged(part) for part in form.replace("{a}", other).split("{b}"))
     out = [list(s) for s in sentences]
-    out[si][i:i + 1] = said + [out[si][i]] + tail
+    out[si][i:i + 1] = before + [out[si][i]] + after
     return out
+
+
+def _untagged(text: str) -> Phrase:
+    """Words said around a value, all ``O``, with their commas as punctuation ("500101, er," -> 500101 , er ,)."""
+    return [Token(",", None, None) if w == "," else Token(w, "O", "O") for w in re.findall(r",|[^\s,]+", text)]
 
 
 CHANNELS: dict[str, Channel] = {

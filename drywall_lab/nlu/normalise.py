@@ -196,6 +196,14 @@ def _code_switch_table(path: Path | str = CODE_SWITCH_PATH) -> dict[tuple[str, .
 Step = Callable[[list[Piece], list[Change]], list[Piece]]
 
 
+def _read_as(words: Sequence[str], said: tuple[int, ...], last: Piece, roles: Sequence[str] = ()) -> list[Piece]:
+    """The pieces for ``words``, read in place of a span of the worker's words (``said``) whose last piece is
+    ``last``: the last word keeps its break and its pause; ``roles`` as in ``Piece.role``."""
+    end = len(words) - 1
+    return [Piece(w, said, last.broken_off and k == end, last.paused and k == end, roles[k] if roles else "")
+            for k, w in enumerate(words)]
+
+
 def _text(pieces: Sequence[Piece], said: Sequence[str]) -> str:
     return " ".join(said[i] for p in pieces for i in p.said)
 
@@ -242,8 +250,7 @@ def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
                  for w in joined_position(word) or [word]]
         if words != [p.word]:
             changes.append(Change("separator", p.word, " ".join(words)))
-        out += [Piece(w, p.said, p.broken_off and k == len(words) - 1, paused=p.paused and k == len(words) - 1)
-                for k, w in enumerate(words)]
+        out += _read_as(words, p.said, p)
     return out
 
 
@@ -274,13 +281,12 @@ def read_offsets(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
             i += 1
             continue
         anchor, sign, count = match.groups()
-        said_as = _OFFSET_ANCHORS.get(anchor.lower(), ("", anchor))
-        words = [(count, ""), ("to", ""), ("the", ""), ("right" if sign == "+" else "left", ""), ("of", "O"),
-                 *((w, "O" if w in ("the", "stud") else "anchor") for w in said_as if w)]
+        named = _OFFSET_ANCHORS.get(anchor.lower(), (anchor,))
+        words = [count, "to", "the", "right" if sign == "+" else "left", "of", *named]
+        roles = ["", "", "", "", "O", *("O" if w in ("the", "stud") else "anchor" for w in named)]
         span = pieces[i:i + n]
-        changes.append(Change("offset", " ".join(p.word for p in span), " ".join(w for w, _ in words)))
-        said = tuple(k for p in span for k in p.said)
-        out += [Piece(w, said, span[-1].broken_off and k == len(words) - 1, role=role) for k, (w, role) in enumerate(words)]
+        changes.append(Change("offset", " ".join(p.word for p in span), " ".join(words)))
+        out += _read_as(words, tuple(k for p in span for k in p.said), span[-1], roles)
         i += n
     return out
 
@@ -328,9 +334,7 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
             continue
         changes.append(Change("shorthand", p.word, "" if reading == "-" else reading))
         if reading != "-":
-            words = reading.split()
-            out += [Piece(w, p.said, p.broken_off and k == len(words) - 1, paused=p.paused and k == len(words) - 1)
-                    for k, w in enumerate(words)]
+            out += _read_as(reading.split(), p.said, p)
     return out
 
 
@@ -353,9 +357,7 @@ def translate_code_switch(pieces: list[Piece], changes: list[Change],
             continue
         span, reading = pieces[i:i + n], table[tuple(folded[i:i + n])]
         changes.append(Change("code switch", " ".join(p.word for p in span), " ".join(reading)))
-        said = tuple(k for p in span for k in p.said)
-        out += [Piece(w, said, span[-1].broken_off and k == len(reading) - 1, paused=span[-1].paused and
-                      k == len(reading) - 1) for k, w in enumerate(reading)]
+        out += _read_as(reading, tuple(k for p in span for k in p.said), span[-1])
         i += n
     return out
 
@@ -390,8 +392,8 @@ def _in_foreign_number(folded: Sequence[str], i: int, lexicon: Path | str = CODE
         start -= 1
     while end < len(folded) - 1 and number(folded[end + 1]):
         end += 1
-    return end - start >= 2 and any(k != i and folded[k] not in DIGITS_ONLY_IN_A_RUN and languages & digits.get(folded[k], frozenset())
-               for k in range(start, end + 1))
+    return end - start >= 2 and any(k != i and folded[k] not in DIGITS_ONLY_IN_A_RUN
+                                    and languages & digits.get(folded[k], frozenset()) for k in range(start, end + 1))
 
 
 @lru_cache(maxsize=16)

@@ -174,10 +174,16 @@ REGISTRY: tuple[Rule, ...] = (
          "word list: a step said as an order along the wall ('two past 500104', 'the stud before it')", "stud"),
     Rule("says_end", W, "says_end", _false, "returns False",
          "S3: 'the very last stud' as an anchor is the right end, not the previous stud", "stud"),
+    Rule("stud_going_on", S, "stud_going_on", _none, "returns None",
+         "S2: a step said as going on from where the work is ('two studs further right', 'one more to the left') "
+         "counts from the previous stud", "stud"),
     # the decision layer's checks (decision.py)
     Rule("two_meanings", D, "two_meanings", _none, "returns None",
          "words naming two panels or studs give the other meaning as a candidate, as likely as the first",
          "decision"),
+    Rule("unread_centre", D, "unread_centre", _none, "returns None",
+         "the default placement while a centre word before a word for the stud stands untagged ('centred over the "
+         "first framing member') gives the centre line as a candidate, as likely", "decision"),
     # step 5, in episodes only
     Rule("had_it_been_done", D, "had_it_been_done", _none, "returns None",
          "an instruction is read against the histories an unanswered question leaves, each as likely",

@@ -10,9 +10,11 @@ action history, and decides in one step:
    history had the robot carried out a command it asked about (``had_it_been_done``), each history counting as much
    as the one as things stand. A reading whose words name two panels or two studs (``two_meanings``) adds a
    candidate for the other meaning, as likely as the one the rules took; a reading that offers two things with
-   "or" (``Interpretation.alternatives``) is a candidate for each command offered, each as likely. The probability
-   the k best leave over (1 minus their sum) is one more candidate, "none of these". (Features for the first three
-   kinds, fitted, came out at weight 0 and moved no generated outcome: they were dropped.)
+   "or" (``Interpretation.alternatives``) is a candidate for each command offered, each as likely; a reading that
+   takes the default placement while a word saying the centre line before a word for the stud stands untagged
+   ("centred over the first framing member"; ``unread_centre``) is a candidate on the centre line too, as likely.
+   The probability the k best leave over (1 minus their sum) is one more candidate, "none of these". (Features for
+   the first three kinds, and one for the centre line, fitted, came out at weight 0: they were dropped.)
 2. **One score each**, the tagger's log-probability plus weighted features of how the words support the reading::
 
        score(r) = w_logp * log p(r) + sum_f w_f * feature_f(r)
@@ -45,7 +47,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
@@ -113,7 +115,9 @@ class DecisionSettings:
     ``through``: whether a question stays open after the robot acts on something else; ``open_questions``: how many
     of the latest questions still open an instruction is read against (an older one lapses: each open question adds
     up to three histories times ``k`` readings to read, so a long run of questions would make every step slower
-    than the last; 4 is the most ever open at once on any set the project scores, so the bound moves no outcome).
+    than the last; 4 is the most ever open at once on any set the project scores, so the bound moves no outcome);
+    ``doubt_default``: a reading's default placement beside an untagged centre word is a candidate on the centre
+    line too (``unread_centre``; off for tags known for certain, ``decide_tags``).
     """
 
     k: int = 8
@@ -126,6 +130,7 @@ class DecisionSettings:
     half: str = "said"
     through: bool = True
     open_questions: int = 4
+    doubt_default: bool = True
 
     def __post_init__(self) -> None:
         if self.k < 1:
@@ -163,6 +168,9 @@ DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
     log_probability=1.4873, undetermined=-5.3593, site_refusal=-4.0607, refusal_log_probability=0.7504,
     beyond_k_best=3.1206),
     costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
+
+#: The settings for tags known for certain (``decide_tags``): no doubt about a placement the tags leave out.
+CERTAIN = replace(DEFAULT_SETTINGS, doubt_default=False)
 
 
 # --- readings --------------------------------------------------------------------------------------------
@@ -348,6 +356,35 @@ def two_meanings(outcome: Outcome, words: Sequence[str], tags: Sequence[str],
     return None
 
 
+#: Words that say a panel's edge goes on the stud's centre line ("centred", "half on the stud", "in the middle of
+#: the stud"; annotation guidelines, Vr_md).
+CENTRE_WORDS = frozenset({"centre", "center", "centred", "centered", "centreline", "centerline", "middle", "mid",
+                          "half", "halfway", "split"})
+
+
+#: Words for the stud a centre word must come before (within ``CENTRE_REACH`` words) to say the centre line.
+STUD_NOUNS = frozenset({"stud", "studs", "stud's", "upright", "uprights", "post", "posts", "framing", "member"})
+#: Words that take a centre word back when they come just before it ("not on centre", "without the centre line").
+NEGATIONS = frozenset({"not", "no", "without", "never", "don't", "dont"})
+CENTRE_REACH = 4
+
+
+def unread_centre(outcome: Outcome, words: Sequence[str], tags: Sequence[str]) -> Outcome | None:
+    """The command on the stud's centre line, where a reading's command takes the default placement (no placement
+    word tagged) while a word that says the centre line is left untagged before a word for the stud ("centred over
+    the first framing member", "half on the upright", with the centre word read as ``O``) and not after a negation:
+    the words may mean the centre line, and the default is what the rules take when nothing is said. None
+    otherwise."""
+    if outcome[0] != "command" or outcome[3] != Placement.VERTICAL_LEFT.value or set(tags) & set(PLACEMENT_TAGS):
+        return None
+    said = [W.normalise(w) for w in words]
+    for k, (w, t) in enumerate(zip(said, tags)):
+        if t == "O" and w in CENTRE_WORDS and STUD_NOUNS & set(said[k + 1:k + 1 + CENTRE_REACH]) \
+                and not NEGATIONS & set(said[max(0, k - CENTRE_REACH):k]):
+            return (*outcome[:3], Placement.VERTICAL_MIDDLE.value)
+    return None
+
+
 # --- step 1: the candidates and their features ---------------------------------------------------------------
 _INDEX = {name: i for i, name in enumerate(FEATURES)}
 
@@ -360,7 +397,8 @@ def _features(**values: float) -> np.ndarray:
 
 
 def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHistory,
-                       assumes: "Decision | None" = None, actual: ActionHistory | None = None) -> list[Candidate]:
+                       assumes: "Decision | None" = None, actual: ActionHistory | None = None,
+                       doubt_default: bool = True) -> list[Candidate]:
     """The candidates of one reading read against ``history``: its own outcome, and the other meaning when its words
     name two panels or studs. ``actual``: the history as it stands, when ``history`` assumes an unanswered question's
     command done (``assumes``); a command the site would not allow as things stand then is a question (the worker
@@ -381,6 +419,11 @@ def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHi
     if actual is not None and not _feasible(actual, outcome):
         # the worker builds on a step not carried out: a question, not a misreading the site refuses
         return [Candidate(("refusal", "unclear"), _features(**base), reading, assumes)]
+    centre = unread_centre(outcome, words, tags) if doubt_default else None
+    if centre is not None and _feasible(history, centre) and (actual is None or _feasible(actual, centre)):
+        # the centre line too, as likely as the default
+        return [Candidate(outcome, _features(**base), reading, assumes),
+                Candidate(centre, _features(**base), reading, assumes)]
     two = two_meanings(outcome, words, tags, history)
     if two is None:
         return [Candidate(outcome, _features(**base), reading, assumes)]
@@ -392,11 +435,12 @@ def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHi
 
 
 def candidates(words: Sequence[str], readings: Sequence[Reading], history: ActionHistory,
-               unanswered: Sequence = (), interpreter: Callable = im_interpret) -> list[Candidate]:
+               unanswered: Sequence = (), interpreter: Callable = im_interpret,
+               doubt_default: bool = True) -> list[Candidate]:
     """Step 1 of the module docstring: every reading's candidates against ``history``, and again against each
     history an unanswered question leaves open (``unanswered``: (decision, the commands it asked about or may have
     meant, how many commands ``history`` held when it asked) triples), and "none of these"."""
-    out = [c for r in readings for c in reading_candidates(words, r, history)]
+    out = [c for r in readings for c in reading_candidates(words, r, history, doubt_default=doubt_default)]
     for entry in unanswered:
         asked, options = entry[0], entry[1]
         asked_at = entry[2] if len(entry) > 2 else len(history)
@@ -408,7 +452,7 @@ def candidates(words: Sequence[str], readings: Sequence[Reading], history: Actio
                 continue  # no longer possible on the site: nothing the worker now builds on
             for r in readings:
                 assumed = Reading(r.tags, r.logprob, interpreter(list(words), r.tags, other))
-                out += reading_candidates(words, assumed, other, asked, history)
+                out += reading_candidates(words, assumed, other, asked, history, doubt_default)
     left = 1.0 - sum(r.probability for r in readings)
     if left > 1e-9:
         out.append(Candidate(NONE_OF_THESE, _features(beyond_k_best=math.log(left)), None))
@@ -465,7 +509,8 @@ def decide(words: Sequence[str], kbest: Sequence[tuple[Sequence[str], float]], m
     top = float(kbest[0][1])
     readings = [Reading(list(tags), float(lp), interpreter(words, tags, history))
                 for tags, lp in kbest if float(lp) >= top - NEGLIGIBLE]
-    cands = candidates(words, readings, history, unanswered if settings.pending else (), interpreter)
+    cands = candidates(words, readings, history, unanswered if settings.pending else (), interpreter,
+                       settings.doubt_default)
     p = probabilities(cands, settings.weight_vector)
     mass: dict[Outcome, float] = {}
     for c, q in zip(cands, p):
@@ -524,7 +569,7 @@ def decide_tags(words: Sequence[str], tags: Sequence[str], labels: Sequence[str]
     index = {label: i for i, label in enumerate(labels)}
     for i, tag in enumerate(tags):
         marginals[i, index.get(tag, index["O"])] = 1.0
-    return decide(words, [(list(tags), 0.0)], marginals, labels, history)
+    return decide(words, [(list(tags), 0.0)], marginals, labels, history, CERTAIN)
 
 
 # --- one instruction, whole episodes ----------------------------------------------------------------------

@@ -110,9 +110,15 @@ def test_spoken_ids_say_the_same_id():
     from drywall_lab.nlu.normalise import normalise_text
 
     rng = random.Random(0)
-    for ident in ["500100", "500112", "500321", "500310"]:
+    said = set()
+    for ident in ["500100", "500112", "500321", "500310", "500106"]:
         for _ in range(30):
-            assert normalise_text(" ".join(C.say_id(rng, ident))) == ident
+            words = C.say_id(rng, ident)
+            said.add(" ".join(words))
+            assert normalise_text(" ".join(words)) == ident
+    assert "five hundred one hundred six" in said  # two numbers of hundreds
+    assert not any(w.count("hundred") == 2 for w in map(" ".join, (C.say_id(rng, "500106", grouped=False)
+                                                                     for _ in range(30))))
 
 
 def test_evaluate_reports_the_decision_layer_by_channel(splits):
@@ -284,3 +290,41 @@ def test_a_value_taken_back_leaves_the_meant_value_tagged_and_the_front_end_drop
     assert len([t for t in out if t.is_word]) > len([t for t in sentence if t.is_word])  # something was taken back
     text = " ".join(t.word for t in out).replace(" ,", ",")
     assert normalise(text).words == normalise(" ".join(t.word for t in sentence if t.is_word)).words, text
+
+
+def _read_outcome(out):
+    """The IM's outcome (after a command on stud 500104) of a channel's output read through the front end, with the
+    corpus's tags of the words read."""
+    from drywall_lab.corpus.generator import join_tokens
+    from drywall_lab.im import ActionHistory, interpret
+    from drywall_lab.nlu.normalise import normalise
+
+    text, words, tags, _ = join_tokens(out, True, lambda w, first: w, lambda w: w.strip(";,\t\n"))
+    read = normalise(text)
+    history = ActionHistory.from_commands([{"drywall_id": "500321", "stud_id": "500104", "placement": "vertical_left"}])
+    return text, interpret(list(read.words), read.tags_of_words(tags), history=history).outcome()
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_continued_steps_leave_the_anchor_unsaid_and_the_im_counts_from_the_previous_stud(seed):
+    sentence = _phrase("put the full/dim sheet two/St_loc1 studs to/St_loc1 the/St_loc1 right/St_loc1 of the "
+                       "previous/St_loc2 stud please")
+    out = C.continued_steps(Chooser(random.Random(seed)), [sentence])
+    text, outcome = _read_outcome(out)
+    assert "previous" not in text and {"further", "more", "over"} & set(text.split()), text
+    assert outcome["stud_id"] == "500106", text
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_a_pasted_table_is_read_back_as_the_same_command(seed):
+    sentence = _phrase("grab the full/dim sheet from the left/Dw_loc1 pile and put it two/St_loc1 studs to/St_loc1 "
+                       "the/St_loc1 right/St_loc1 of the previous/St_loc2 stud on the centre/Vr_md line/Vr_md")
+    out = C.pasted_tables(Chooser(random.Random(seed)), [sentence])
+    text, outcome = _read_outcome(out)
+    assert "\n" in text
+    assert outcome == {"drywall_id": "500320", "stud_id": "500106", "placement": "vertical_middle", "refusal": None}, text
+
+
+def test_a_table_is_not_made_of_fields_whose_words_interleave():
+    sentence = _phrase("put it on 500104/ID_stud , the full/dim one , stud 500104/ID_stud again")
+    assert C.pasted_tables(Chooser(random.Random(0)), [sentence]) == [sentence]

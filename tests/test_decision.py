@@ -12,7 +12,8 @@ import pytest
 
 from drywall_lab.corpus.markup import parse
 from drywall_lab.corpus.tags import TAGS
-from drywall_lab.decision import (BEST_PATH, DEFAULT_SETTINGS, FEATURES, DecisionCosts, DecisionSettings, _weights,
+from drywall_lab.decision import (BEST_PATH, CERTAIN, DEFAULT_SETTINGS, FEATURES, DecisionCosts, DecisionSettings,
+                                  _weights,
                                   completions, conformal_floor, decide, decide_episode, decide_rows,
                                   decide_tags, decision_scores, expected_costs, fit_weights, outcome_of,
                                   play_episode, question_between, step_outcome, truth_mask,
@@ -159,7 +160,8 @@ def test_gold_tags_played_as_episodes_give_every_intended_outcome(split):
     for steps in episodes.values():
         steps.sort(key=lambda r: r["context"]["step"])
         history = ActionHistory.from_commands(steps[0]["context"]["history"])
-        decisions = play_episode([r["words"] for r in steps], [_Gold(r["tags"]) for r in steps], TAGS, history)
+        decisions = play_episode([r["words"] for r in steps], [_Gold(r["tags"]) for r in steps], TAGS, history,
+                                 CERTAIN)
         for row, d in zip(steps, decisions):
             assert d.interpretation.outcome() == dict(row["expected"]), row["id"]
 
@@ -546,3 +548,16 @@ def test_a_command_that_builds_on_a_step_not_carried_out_is_a_question_not_a_sit
     assert resting[0].features[list(FEATURES).index("site_refusal")] == 0.0
     here = [c for c in cands if c.assumes is None and c.reading is not None]
     assert [c.outcome for c in here] == [reading.outcome]
+
+
+def test_a_default_placement_beside_an_untagged_centre_word_is_a_question():
+    """``unread_centre``: a reading that takes the default placement while "centred" before a word for the stud stands
+    untagged weighs the centre line as much: the robot asks which; gold tags (``decide_tags``) act."""
+    words, tags = _wt("a full/dim one centred over the first/St_loc1 framing member")
+    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS, ActionHistory())
+    assert d.action == "ask"
+    assert set(d.options) == {("command", "500320", "500100", "vertical_left"),
+                              ("command", "500320", "500100", "vertical_middle")}
+    assert decide_tags(words, tags, TAGS, ActionHistory()).action == "act"
+    negated = _wt("a full/dim one , not centred on the first/St_loc1 stud")  # taken back by "not"
+    assert decide(negated[0], [(negated[1], math.log(0.99))], _sure(negated[1]), TAGS, ActionHistory()).action == "act"

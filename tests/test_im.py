@@ -468,6 +468,31 @@ def test_unplaceable_stud_positions_say_what_is_missing(markup, message):
     assert (result.refusal.reason, result.refusal.message) == ("undetermined", message)
 
 
+@pytest.mark.parametrize("markup, stud", [
+    ("two/St_loc1 studs further/St_loc1 right/St_loc1", "500106"),
+    ("three/St_loc1 more/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1", "500101"),
+    ("one/St_loc1 over/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1", "500105"),
+    ("further/St_loc1 right/St_loc1", "500105"),  # no count: one place
+    ("three/St_loc1 to/St_loc1 the/St_loc1 left/St_loc1", None),  # no going-on word: counted from what?
+    ("two/St_loc1 over/St_loc1 to/St_loc1 the/St_loc1 right/St_loc1 of the door", None),  # from what the site lacks
+    ("the third/St_loc1 stud further/St_loc1 right/St_loc1", None),  # an ordinal: from the right end, or a step?
+])
+def test_a_step_said_as_going_on_counts_from_the_previous_stud(markup, stud):
+    ctx = context(("500320", "500104", "vertical_left"))
+    if stud is None:
+        with pytest.raises(Refusal) as info:
+            resolve_stud(tagged(markup), ctx)
+        assert info.value.reason == "undetermined"
+    else:
+        assert resolve_stud(tagged(markup), ctx) == stud
+
+
+def test_a_step_said_as_going_on_needs_a_previous_stud():
+    with pytest.raises(Refusal) as info:
+        resolve_stud(tagged("two/St_loc1 studs further/St_loc1 right/St_loc1"), context())
+    assert info.value.reason == "no_history"
+
+
 # --- placement ---------------------------------------------------------------------------------
 @pytest.mark.parametrize("markup, placement", [
     ("put it on stud 500100", Placement.VERTICAL_LEFT),

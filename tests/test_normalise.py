@@ -24,6 +24,11 @@ from drywall_lab.nlu import normalise as N
     # digits as radio operators say them, alone and inside an id
     ("stud five-zero-zero-one-zero-fife, tree studs over", "stud 500105 three studs over"),
     ("five zero zero tree wun niner", "500319"),
+    # two numbers of hundreds
+    ("start from stud five hundred one hundred six", "start from stud 500106"),
+    ("five hundred three hundred twenty standing", "500320 standing"),
+    ("five hundred one hundred twelve", "500112"),
+    ("stud five hundred four", "stud five hundred four"),  # a number, not an id
 ])
 def test_ids_as_people_say_and_type_them_are_six_digits(said, read):
     assert N.normalise_text(said) == read
@@ -243,6 +248,8 @@ def test_a_corpus_row_holds_the_words_the_front_end_reads_from_its_text(split):
     ("500104 +2", "2 to the right of 500104"),
     ("- 500321 - 1 back", "500321 1 back"),  # dashes between a form's fields: no sum
     ("+2", "+2"),  # counted from what? left as written
+    ("prev stud +5", "5 to the right of the previous stud"),  # "stud" between the anchor and the sign
+    ("last stud - 2", "2 to the left of the last stud"),
 ])
 def test_a_stud_written_as_a_sum_is_read_in_words(said, read):
     assert N.normalise_text(said) == read
@@ -282,3 +289,24 @@ def test_a_label_typed_before_a_one_word_value_is_read_in_spoken_order(said, rea
 ])
 def test_a_value_taken_back_by_another_of_its_kind_is_dropped(said, read):
     assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
+    ("line;panel;stud;orientation\n1;500320;500100;vertical", "panel 500320 stud 500100 vertical orientation"),
+    ("qty, size, from_stack, stud\n1, 2x8, middle, 500104\nthanks", "size 2x8 middle stack stud 500104 thanks"),
+    ("item\tdate\tsize\tstud\tedge\n6\t07/12\t2x8\tprev stud +5\tcentre line",
+     "size 2x8 stud 5 to the right of the previous stud edge centre line"),
+    ("pasted from the sheet:\nline|panel|stud\n3|500321|500106", "pasted from the sheet panel 500321 stud 500106"),
+    ("stud 500,104 please\nand the 4x8", "stud 500104 please and the 4x8"),  # two lines, no table
+    ("put it on 500104, centre line, then go", "put it on 500104 centre line then go"),  # commas in a sentence
+])
+def test_a_table_pasted_from_a_spreadsheet_is_read_as_a_forms_words(said, read):
+    assert N.normalise_text(said) == read
+
+
+def test_a_tables_header_gives_its_words_to_the_labels_and_a_row_number_is_dropped():
+    n = N.normalise("line;panel;stud\n2;500321;500103")
+    assert n.said == ("line;panel;stud", "2;500321;500103")
+    assert n.words == ("panel", "500321", "stud", "500103")
+    assert n.sources == ((0,), (1,), (0,), (1,))
+    assert [c.kind for c in n.changes].count("table") == 4  # the header, the row number dropped, two fields

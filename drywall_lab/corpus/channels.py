@@ -25,6 +25,10 @@ keeping the meaning and carrying every word's tag along:
   sum ("prev+2", "500104-1") and a value after its label ("size=same", "row=top");
 - ``value_repairs``: one value said wrongly and taken back by another of its kind ("stud 500101, er, 500100, sorry",
   "four to the left- right", "the third, no, the fourth").
+- ``continued_steps``: a stud counted from the previous one said as going on from where the work is, the anchor
+  unsaid ("two studs further right", "one more to the left", "three over to the right").
+- ``pasted_tables``: the instruction pasted from a spreadsheet, a header line of labels and a line of values under
+  it ("line;panel;stud;edge" / "3;500320;500104;centre line").
 
 The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides, the code switch, the glued
 fields and the values taken back into the corpus's written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
@@ -34,12 +38,14 @@ said in a way the tagger never met (first sight).
 from __future__ import annotations
 
 import functools
+import itertools
 import random
 import re
 from typing import Callable
 
 from drywall_lab.corpus.markup import Phrase, Token
 from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_DIGITS, ORDINAL_WORDS, Chooser
+from drywall_lab.corpus.tags import PLACEMENT_TAGS
 from drywall_lab.site import default_site
 
 Sentences = list[Phrase]
@@ -75,8 +81,23 @@ def _map_words(sentences: Sentences, rewrite: Callable[[Token], Phrase | None]) 
 
 
 # --- spoken ids -----------------------------------------------------------------------------------------------
-def say_id(rng: random.Random, ident: str) -> list[str]:
-    """An id as people say or type it: digit by digit, with "double", with "hundred", or split in two."""
+_ONES = ("", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve",
+         "thirteen", "fourteen", "fifteen", "sixteen", "seventeen", "eighteen", "nineteen")
+_TENS = ("", "", "twenty", "thirty", "forty", "fifty", "sixty", "seventy", "eighty", "ninety")
+
+
+def _as_hundreds(number: int) -> list[str]:
+    """A number from 100 to 999 in words, as an id's last three digits are said ("one hundred six")."""
+    rest = number % 100
+    words = [_ONES[number // 100], "hundred"]
+    if rest >= 20:
+        return words + [_TENS[rest // 10]] + ([_ONES[rest % 10]] if rest % 10 else [])
+    return words + ([_ONES[rest]] if rest else [])
+
+
+def say_id(rng: random.Random, ident: str, grouped: bool = True) -> list[str]:
+    """An id as people say or type it: digit by digit, with "double", with "hundred" (also as two numbers of
+    hundreds: "five hundred one hundred six", unless not ``grouped``), or split in two."""
     form = rng.randrange(6)
     digits = [rng.choice(_DIGIT_WORDS[d]) for d in ident]
     if form == 0 or form == 1:
@@ -84,9 +105,12 @@ def say_id(rng: random.Random, ident: str) -> list[str]:
     if form == 2 and ident[1:3] == "00":  # "five double-oh one oh four", "five double oh ..."
         double = ["double-oh"] if rng.random() < 0.5 else ["double", rng.choice(_DIGIT_WORDS["0"])]
         return digits[:1] + double + digits[3:]
-    if form == 3 and ident[1:3] == "00":  # "five hundred one oh four", "five hundred one-oh-four"
-        tail = digits[3:]
-        return digits[:1] + ["hundred"] + (["-".join(tail)] if rng.random() < 0.5 else tail)
+    if form == 3 and ident[1:3] == "00":  # "five hundred one oh four", "five hundred one-oh-four", "five hundred
+        # one hundred four"
+        tail, way = digits[3:], rng.random()
+        if grouped and way >= 0.75 and len(_as_hundreds(int(ident[3:]))) == 3:  # as many words as "one oh six"
+            return digits[:1] + ["hundred"] + _as_hundreds(int(ident[3:]))
+        return digits[:1] + ["hundred"] + (["-".join(tail)] if way < 0.5 else tail)
     if form == 4:
         return [ident[:3], ident[3:]]
     return [f"{ident[:3]}-{ident[3:]}"]
@@ -119,8 +143,9 @@ def spoken_ids(ch: Chooser, sentences: Sentences) -> Sentences:
             return [_word(_on_the_radio(ch, tok.word.lower()), tok.tag, tok.coref)]
         if not _is_id(tok):
             return None
-        said = [_word(_on_the_radio(ch, w) if radio else w, tok.tag, tok.coref) for w in say_id(ch.rng, tok.word)]
-        if len(said) == 6 and ch.chance(0.2):  # "five oh oh one seven- no, one one one"
+        said = [_word(_on_the_radio(ch, w) if radio else w, tok.tag, tok.coref) for w in say_id(ch.rng, tok.word, grouped=not radio)]
+        if len(said) == 6 and "hundred" not in (t.word for t in said) and ch.chance(0.2):  # digit by digit: "five oh
+            # oh one seven- no, one one one"
             wrong = str((int(tok.word[4]) + ch.rng.randint(1, 9)) % 10)
             return said[:3] + [Token(said[3].word, "O", "O"), Token(_DIGIT_WORDS[wrong][0] + "-", "O", "O")] + \
                 _plain(*ch.rng.choice(["no", "sorry", "I mean"]).split()) + said[3:]
@@ -749,40 +774,85 @@ _SUM_FILLER = frozenset({"to", "the", "over", "studs", "stud", "places", "place"
 _SUM_ANCHORS = {("previous",): "prev", ("last",): "last", ("previous", "one"): "prev", ("last", "one"): "last"}
 
 
-def _written_sums(sentence: Phrase) -> Phrase:
+def _sum_at(sentence: Phrase, i: int) -> tuple[int, str, str, int] | None:
+    """A stud counted from the previous one or from an id that starts at ``i`` ("two studs to the right of the
+    previous stud", "one to the left of 500104"): (the end of its words, the anchor's name in a sum: "prev", "last"
+    or the id, the side, the count), or None."""
+    tok = sentence[i]
+    if not (tok.is_word and tok.tag == "St_loc1" and tok.word.lower() in _COUNTS):
+        return None
+    j, side = i + 1, None
+    while j < len(sentence) and sentence[j].is_word and (sentence[j].tag == "St_loc1" or (
+            sentence[j].tag == "O" and sentence[j].word.lower() in _SUM_FILLER)) and side is None:
+        side = sentence[j].word.lower() if sentence[j].word.lower() in ("left", "right") else None
+        j += 1
+    k = j
+    while k < len(sentence) and sentence[k].is_word and sentence[k].tag == "O" and sentence[k].word.lower() in ("of", "the"):
+        k += 1
+    e = k
+    while e < len(sentence) and sentence[e].is_word and sentence[e].tag == "St_loc2":
+        e += 1
+    anchor = [t.word.lower() for t in sentence[k:e]]
+    name = anchor[0] if len(anchor) == 1 and anchor[0].isdigit() and len(anchor[0]) == 6 else _SUM_ANCHORS.get(tuple(anchor))
+    if side is None or name is None or sentence[j - 1].word.lower() != side or not 0 < k - j <= 2 or \
+            any(t.tag == "St_loc1" and t.word.lower() == "from" for t in sentence[i:j]):
+        return None
+    if e < len(sentence) and sentence[e].is_word and sentence[e].tag == "O" and sentence[e].word.lower() in ("stud", "one"):
+        e += 1
+    return e, name, side, _COUNTS[tok.word.lower()]
+
+
+def _written_sums(sentence: Phrase, spaced: bool = False) -> Phrase:
     """A stud counted from the previous one or from an id, written as a sum ("two studs to the right of the previous
-    stud" -> "prev+2", "one to the left of 500104" -> "500104-1"; tagged ``St_loc1``, the front end's
-    ``read_offsets`` reads it back); other relative talk stays as it is."""
+    stud" -> "prev+2", "one to the left of 500104" -> "500104-1"; ``spaced``: "prev stud +2"; tagged ``St_loc1``,
+    the front end's ``read_offsets`` reads it back); other relative talk stays as it is."""
     out: Phrase = []
     i = 0
     while i < len(sentence):
+        found = _sum_at(sentence, i)
+        if found is None:
+            out.append(sentence[i])
+            i += 1
+            continue
+        e, name, side, count = found
         tok = sentence[i]
-        if not (tok.is_word and tok.tag == "St_loc1" and tok.word.lower() in _COUNTS):
-            out.append(tok)
-            i += 1
-            continue
-        j, side = i + 1, None
-        while j < len(sentence) and sentence[j].is_word and (sentence[j].tag == "St_loc1" or (
-                sentence[j].tag == "O" and sentence[j].word.lower() in _SUM_FILLER)) and side is None:
-            side = sentence[j].word.lower() if sentence[j].word.lower() in ("left", "right") else None
-            j += 1
-        k = j
-        while k < len(sentence) and sentence[k].is_word and sentence[k].tag == "O" and sentence[k].word.lower() in ("of", "the"):
-            k += 1
-        e = k
-        while e < len(sentence) and sentence[e].is_word and sentence[e].tag == "St_loc2":
-            e += 1
-        anchor = [t.word.lower() for t in sentence[k:e]]
-        name = anchor[0] if len(anchor) == 1 and anchor[0].isdigit() and len(anchor[0]) == 6 else _SUM_ANCHORS.get(tuple(anchor))
-        if side is None or name is None or sentence[j - 1].word.lower() != side or not 0 < k - j <= 2 or \
-                any(t.tag == "St_loc1" and t.word.lower() == "from" for t in sentence[i:j]):
-            out.append(tok)
-            i += 1
-            continue
-        if e < len(sentence) and sentence[e].is_word and sentence[e].tag == "O" and sentence[e].word.lower() in ("stud", "one"):
-            e += 1
-        out.append(Token(f"{name}{'+' if side == 'right' else '-'}{_COUNTS[tok.word.lower()]}", "St_loc1", tok.coref))
+        sign = f"{'+' if side == 'right' else '-'}{count}"
+        if spaced and not name.isdigit():
+            out += [Token(name, "St_loc1", tok.coref), Token("stud", "St_loc1", tok.coref), Token(sign, "St_loc1", tok.coref)]
+        else:
+            out.append(Token(f"{name}{sign}", "St_loc1", tok.coref))
         i = e
+    return out
+
+
+#: How a step from the previous stud is said as going on from where the work is ({n}: the count, {s}: the side); the
+#: IM counts such a step from the previous stud (``im.stud.stud_going_on``).
+GOING_ON_FORMS = ("{n} studs further {s}", "{n} more to the {s}", "{n} studs over to the {s}", "{n} further to the {s}",
+                  "{n} stud more {s}", "{n} over to the {s}")
+
+
+def continued_steps(ch: Chooser, sentences: Sentences) -> Sentences:
+    """A stud counted from the previous one said as going on from where the work is, the anchor left unsaid ("two
+    studs to the right of the previous stud" -> "two studs further right", "one more to the left", "three over to the
+    right"; ``GOING_ON_FORMS``). The count, the going-on word and the side are ``St_loc1``, a stud noun ``O``."""
+    out: Sentences = []
+    for sentence in sentences:
+        new: Phrase = []
+        i = 0
+        while i < len(sentence):
+            found = _sum_at(sentence, i)
+            if found is None or found[1] not in ("prev", "last"):
+                new.append(sentence[i])
+                i += 1
+                continue
+            e, _, side, _ = found
+            count = sentence[i]
+            for k, word in enumerate(ch.rng.choice(GOING_ON_FORMS).format(n=count.word, s=side).split()):
+                tag = "O" if word in ("stud", "studs") else "St_loc1"
+                word = "stud" if word == "studs" and count.word.lower() in ("one", "1") else word
+                new.append(count if k == 0 else Token(word, tag, count.coref if tag != "O" else "O"))
+            i = e
+        out.append(new)
     return out
 
 
@@ -809,11 +879,11 @@ def _labels_first(sentence: Phrase, glue: str) -> Phrase:
 
 def glued_fields(ch: Chooser, sentences: Sentences) -> Sentences:
     """Typed as a program or a terse form is: each run of words of one tag joined by "_" ("centre_line"; a position's
-    now and then by "-": "3rd-from-right"), and a field's
-    label glued to the value after it by "=" or ":" ("stud=500104", "size=2x8"; the label takes the value's tag). Half
-    the time, a stud counted from the previous one or an id is written as a sum ("prev+2", "500104-1") and a one-word
-    value that says which comes after its label ("size=same", "row=top"). The front end's ``split_fields`` and
-    ``read_offsets`` take them apart again."""
+    now and then by "-": "3rd-from-right"), and a field's label glued to the value after it by "=" or ":"
+    ("stud=500104", "size=2x8"; the label takes the value's tag). Half the time, a stud counted from the previous one
+    or an id is written as a sum ("prev+2", "500104-1"; with ":" apart: "prev stud +2") and a one-word value that
+    says which comes after its label ("size=same", "row=top"). The front end's ``split_fields`` and ``read_offsets``
+    take them apart again."""
     from drywall_lab.nlu.normalise import DIGIT_WORDS, FIELD_LABELS
 
     glue = ch.rng.choice(["=", "=", ":"])
@@ -822,7 +892,7 @@ def glued_fields(ch: Chooser, sentences: Sentences) -> Sentences:
     out: Sentences = []
     for sentence in sentences:
         if program:
-            sentence = _labels_first(_written_sums(sentence), glue)
+            sentence = _labels_first(_written_sums(sentence, spaced=glue == ":"), glue)
         runs = _glued_runs(sentence, position_joiner) if ch.chance(0.7) else list(sentence)
         new: Phrase = []
         for tok in runs:
@@ -893,11 +963,87 @@ def _untagged(text: str) -> Phrase:
     return [Token(",", None, None) if w == "," else Token(w, "O", "O") for w in re.findall(r",|[^\s,]+", text)]
 
 
+# --- a table pasted from a spreadsheet ----------------------------------------------------------------------
+#: The tags of each field of a pasted table, in the order the columns come, and the labels its header may give it
+#: (the first tag of the field's words picks the label).
+TABLE_FIELDS: tuple[tuple[tuple[str, ...], dict[str, tuple[str, ...]]], ...] = (
+    (("ID_wall", "dim", "width", "length", "Dw_loc1", "Dw_loc2"),
+     {"ID_wall": ("panel", "panel_id", "board"), "Dw_loc1": ("stack", "from_stack", "pile"),
+      "Dw_loc2": ("stack", "pile")}),
+    (("ID_stud", "St_loc1", "St_loc2"), {"": ("stud", "stud_id", "stud")}),
+    (("Vr_md",), {"": ("edge", "line")}),
+    (("Hr_top", "Hr_btm"), {"": ("row", "row")}),
+)
+_SIZE_LABELS = ("size", "size", "sheet")
+#: Words after a field's last tagged word that still belong to its cell: a size's unit and side ("240 cm long").
+_CELL_TAILS = frozenset({"wide", "long", "high", "tall", "across", "mm", "cm", "m", "millimetres", "millimeters",
+                         "centimetres", "centimeters", "metres", "meters", "metre", "meter", "feet", "foot", "ft"})
+#: Columns that only number or date a row, with their values: read by no rule (``nlu.normalise.read_tables``).
+_ROW_COLUMNS = (("line", lambda rng: str(rng.randint(1, 30))), ("item", lambda rng: str(rng.randint(1, 12))),
+                ("#", lambda rng: str(rng.randint(1, 40))), ("date", lambda rng: f"{rng.randint(1, 28):02d}/{rng.randint(1, 12):02d}"),
+                ("qty", lambda rng: "1"))
+
+
+def _phrase_after(tokens: Phrase, last: Token, reach: int = 3) -> Phrase:
+    """The words (at most ``reach``) after the word ``last`` of ``tokens`` up to a punctuation mark."""
+    k = next(i for i, t in enumerate(tokens) if t is last) + 1
+    return list(itertools.takewhile(lambda t: t.is_word, tokens[k:k + reach]))
+
+
+def pasted_tables(ch: Chooser, sentences: Sentences) -> Sentences:
+    """The instruction pasted as a table from a spreadsheet: a header line of labels ("line;panel;stud;edge") and a
+    line of values under it, the cells separated by ";", "," or a tab, a column that only numbers or dates the row
+    now and then first; each field's words are its cell (``TABLE_FIELDS``, with a size's unit and side after it and
+    a placement's phrase whole; the words around them are left out). The front end's ``read_tables`` reads it back as a form's words. An instruction whose fields' words interleave, or
+    whose field goes on with "of" and words no tag reads ("right of the door"), is left as it is."""
+    rng = ch.rng
+    tokens = [t for sentence in sentences for t in sentence]
+    words = [t for t in tokens if t.is_word]
+    for tag, anchor in (("Dw_loc1", "Dw_loc2"), ("St_loc1", "St_loc2")):  # "right of the door", "left, sorry, of
+        # the door": an anchor no tag reads
+        idx = [i for i, t in enumerate(words) if t.tag == tag] if not any(t.tag == anchor for t in words) else []
+        after = words[idx[-1] + 1:idx[-1] + 5] if idx else []
+        if any(t.word.lower() == "of" for t in itertools.takewhile(lambda t: t.tag == "O", after)):
+            return sentences
+    cells: list[tuple[int, str, Phrase]] = []
+    for tags, labels in TABLE_FIELDS:
+        idx = [i for i, t in enumerate(words) if t.tag in tags]
+        if not idx:
+            continue
+        first = words[idx[0]].tag
+        label = rng.choice(labels.get(first) or labels.get("") or _SIZE_LABELS)
+        end = idx[-1] + 1
+        while end < len(words) and words[end].tag == "O" and words[end].word.lower() in _CELL_TAILS:
+            end += 1
+        if set(tags) & set(PLACEMENT_TAGS):  # a placement's phrase whole ("half on the stud"), up to a mark
+            phrase = _phrase_after(tokens, words[end - 1]) if end < len(words) else []
+            end += len(list(itertools.takewhile(lambda t: t.tag == "O", phrase)))
+        cells.append((idx[0], label, words[idx[0]:end]))
+    spans = sorted((start, start + len(value)) for start, _, value in cells)
+    if len(cells) < 2 or any(a[1] > b[0] for a, b in zip(spans, spans[1:])):
+        return sentences
+    cells.sort(key=lambda c: c[0])
+    header = [label for _, label, _ in cells]
+    values = [value for _, _, value in cells]
+    for name, value_of in rng.sample(_ROW_COLUMNS, rng.choice([0, 1, 1, 2])):
+        header.insert(0, name)
+        values.insert(0, [Token(value_of(rng), "O", "O")])
+    sep = rng.choice([";", ",", "\t"])
+    out: Phrase = []
+    for k, label in enumerate(header):
+        out.append(Token(label + ("\n" if k == len(header) - 1 else sep), "O", "O"))
+    for k, value in enumerate(values):
+        last = value[-1]
+        out += value[:-1] + [Token(last.word + ("" if k == len(values) - 1 else sep), last.tag, last.coref)]
+    return [out]
+
+
 CHANNELS: dict[str, Channel] = {
     "restated_studs": restated_studs, "site_references": site_references, "stack_talk": stack_talk, "relative_talk": relative_talk,
     "spoken_ids": spoken_ids, "shorthand": shorthand,
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
     "code_switch": code_switch, "openers": openers, "glued_fields": glued_fields, "value_repairs": value_repairs,
+    "continued_steps": continued_steps, "pasted_tables": pasted_tables,
 }
 #: A row whose target is said by a property ("the narrow one") instead of its size, in every split: drawn where the
 #: target is said (``field_generator.size_property_draw``), so not a function of sentences; a row records it like one.
@@ -919,7 +1065,8 @@ CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, 
 HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: Held back whole and laid over the novel split's instructions at this rate, on top of their held-back channel or pair,
 #: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
-HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1, "value_repairs": 0.1}
+HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1, "value_repairs": 0.1,
+                                        "continued_steps": 0.1, "pasted_tables": 0.05}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))

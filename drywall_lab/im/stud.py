@@ -12,8 +12,11 @@ Three rules, tried in order:
    ordinal with a side but no "from" ("the third stud left": from the left end, or
    to the left of another stud?), a step with no anchor tagged ("three to the
    left", "just to the right"), a count with the middle or with "last"
-   (``words.line_position``). A stud named twice by its position, in two phrases ("the very first stud, the
-   leftmost one"), is read phrase by phrase: both must name the same stud.
+   (``words.line_position``). A step said as going on from where the work is ("two studs
+   further right", "one more to the left", "three over to the right") counts from the
+   previous stud (``stud_going_on``). A stud named twice by its position, in two phrases
+   ("the very first stud, the leftmost one"), is read phrase by phrase: both must name the
+   same stud.
 3. ``St_loc1`` + ``St_loc2``: ``St_loc1`` is a direction with an optional count
    (default 1; "zero", "0" and "same" are 0: the anchor itself), ``St_loc2`` the
    anchor: a stud id, the leftmost or rightmost stud, or the previous stud (the stud
@@ -73,6 +76,9 @@ def stud_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | N
         quoted = W.quote(ti.phrase("St_loc1"))  # "the same stud", "where the last one went": the previous stud
         stud = ctx.site.stud(ctx.require_last(quoted)["stud_id"])
         return Decision(stud.stud_id, f"{quoted}: the stud of the last accepted command -> stud {stud.stud_id}")
+    going_on = stud_going_on(ti, ctx)
+    if going_on is not None:
+        return going_on
     try:
         position = W.line_position(said, W.quote(ti.span("St_loc1")), len(ctx.site.studs), "stud")
     except Refusal as refusal:
@@ -86,6 +92,22 @@ def stud_by_position(ti: TaggedInstruction, ctx: MappingContext) -> Decision | N
         raise Refusal("undetermined", f"You said {quoted} of {W.quote(anchor)}: which stud do you count from?")
     stud = _stud_at(ctx, index, quoted)
     return Decision(stud.stud_id, f"{quoted}: {how} -> stud {stud.stud_id}")
+
+
+def stud_going_on(ti: TaggedInstruction, ctx: MappingContext) -> Decision | None:
+    """Rule 2, a step that goes on from where the work is ("two studs further right", "three more to the left", "one
+    over to the right"; ``words.goes_on``): counted from the previous stud (the stud of the last accepted command),
+    as if "of the previous stud" were said. None for any other position; a step counted from something the site
+    does not have ("two over to the right of the door") is left to the rule below, which asks."""
+    step = W.goes_on(ti.span("St_loc1"))
+    if step is None or W.unread_anchor(ti.words, ti.tags, "St_loc1"):
+        return None
+    direction, count = step
+    quoted = W.quote(ti.span("St_loc1"))
+    last = ctx.site.stud(ctx.require_last(quoted)["stud_id"])
+    where = f"{quoted}: {W.places(count)} to the {direction} of the previous stud {last.stud_id}"
+    stud = _stud_at(ctx, last.index + (count if direction == "right" else -count), where)
+    return Decision(stud.stud_id, f"{where} -> stud {stud.stud_id}")
 
 
 #: Words that may stand inside one position ("third stud from the left") without starting another.

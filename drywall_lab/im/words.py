@@ -76,6 +76,10 @@ UNTAGGED = frozenset({"O", "Trg", "Dst"})
 #: Words of a step from another stud or stack ("one over to the right", "just to the left", "two places"):
 #: without a tagged anchor there is nothing to count from.
 RELATIVE_WORDS = frozenset({"over", "place", "places", "next", "just", "beside", "same", "where"})
+#: Words that say a step goes on from where the work is ("two studs further right", "three more to the left", "one
+#: over to the right"): with no anchor tagged, the step counts from the previous stud (annotation guidelines,
+#: St_loc1).
+GOING_ON_WORDS = frozenset({"further", "farther", "more", "over"})
 #: Words of a stud position that mean "0 places from the anchor": "the same stud as last time", "where the
 #: last one went" (annotation guidelines 3, St_loc1, and 4.7).
 SAME_WORDS = frozenset({"same", "where"})
@@ -314,6 +318,21 @@ def says_end(words: Iterable[str]) -> bool:
 def says_same(words: Iterable[str]) -> bool:
     """ "same", "where" (the last one went): 0 places from the anchor."""
     return any(normalise(w) in SAME_WORDS for w in words)
+
+
+def goes_on(words: Sequence[str]) -> tuple[str, int] | None:
+    """(direction, count) of a step said as going on from where the work is ("two studs further right" -> ("right",
+    2), "one over to the left" -> ("left", 1), "more to the right" -> ("right", 1)): a going-on word
+    (``GOING_ON_WORDS``) with one side and at most one count that is no ordinal, and nothing else of a position (no
+    "from", middle, end, "same" or id). None otherwise."""
+    said = [normalise(w) for w in words]
+    if not any(w in GOING_ON_WORDS for w in said) or len(sides_in(said)) != 1:
+        return None
+    counts = _counts(words)
+    if len(counts) > 1 or any(is_ordinal for _, is_ordinal in counts) or says_from(said) or says_middle(said) \
+            or says_end(said) or says_same(said) or says_last(said) or ids_in(words):
+        return None
+    return next(iter(sides_in(said))), counts[0][0] if counts else 1
 
 
 def says_relative(words: Iterable[str]) -> bool:

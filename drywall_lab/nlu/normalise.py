@@ -27,6 +27,7 @@ tags (``tags_of_said``), and the trace lists what was normalised (``changes``).
 from __future__ import annotations
 
 import csv
+import itertools
 import re
 import unicodedata
 from dataclasses import dataclass, replace
@@ -85,6 +86,9 @@ class Piece:
     #: right of the previous stud"): "" its source's tag, "O" none, "anchor" the anchor tag of its source's
     #: relative tag (``St_loc1`` -> ``St_loc2``)
     role: str = ""
+    #: (line, cell) of the worker's text it stands in: a new line, a tab, or a comma or semicolon after a word start
+    #: another cell (a table pasted from a spreadsheet: ``read_tables``)
+    cell: tuple[int, int] = (0, 0)
 
 
 @dataclass(frozen=True)
@@ -254,9 +258,9 @@ def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     return out
 
 
-#: A count added to or taken from a stud written as a sum ("prev+2", "500104-1", "last + 3"): the anchor, the sign, the
-#: count (at most two digits).
-_OFFSET = re.compile(r"^(prev|previous|last|500\d{3})?([+-])(\d{1,2})$", re.I)
+#: A count added to or taken from a stud written as a sum ("prev+2", "500104-1", "last + 3", "prev stud +5"): the
+#: anchor, the sign, the count (at most two digits).
+_OFFSET = re.compile(r"^(prev|previous|last|500\d{3})?(?:stud)?([+-])(\d{1,2})$", re.I)
 _OFFSET_ANCHORS = {"prev": ("the", "previous", "stud"), "previous": ("the", "previous", "stud"),
                    "last": ("the", "last", "stud")}
 
@@ -264,17 +268,17 @@ _OFFSET_ANCHORS = {"prev": ("the", "previous", "stud"), "previous": ("the", "pre
 def read_offsets(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A stud written as a sum, as a program or a tablet form has it ("stud=prev+2", "500104-1", "prev + 3"), read in
     words: "2 to the right of the previous stud", "1 to the left of 500104". "prev" or "last" may stand apart from the
-    sign ("prev +2", "prev + 2", "last -1"), an id only from "+N" ("500104 +2": "500321 - 1" is more likely a dash
+    sign, with or without "stud" ("prev +2", "prev + 2", "last -1", "prev stud +5"), an id only from "+N" ("500104 +2": "500321 - 1" is more likely a dash
     between fields); a sign with no anchor ("+2") is left as written (counted from what?)."""
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
         match, n = None, 0
-        for n in (1, 2, 3):  # "prev+2"; "prev" "+2"; "prev" "+" "2"
+        for n in (1, 2, 3, 4):  # "prev+2"; "prev" "+2"; "prev" "+" "2"; "prev" "stud" "+" "2"
             match = _OFFSET.match("".join(p.word for p in pieces[i:i + n])) if i + n <= len(pieces) else None
             if match:
                 break
-        if match and n > 1 and (match.group(2) == "-" or n == 3) and (match.group(1) or "").isdigit():
+        if match and n > 1 and (match.group(2) == "-" or n >= 3) and (match.group(1) or "").isdigit():
             match = None  # "500321 - 1", "500104 + 2" apart: a dash between fields, or an id and a count
         if not match or not match.group(1):
             out.append(pieces[i])
@@ -501,6 +505,50 @@ def digits_of(parts: Sequence[str]) -> str | None:
     return out if repeat == 1 and out else None
 
 
+def _below_a_hundred(parts: Sequence[str]) -> str | None:
+    """The number a one- or two-word run of number parts says below a hundred ("six", "twelve", "twenty two",
+    "20"), or None."""
+    if len(parts) == 1:
+        p = parts[0]
+        if p in DIGIT_WORDS and p not in ("oh", "o", "nought"):
+            return DIGIT_WORDS[p]
+        if p in TEEN_WORDS:
+            return TEEN_WORDS[p]
+        if p in TENS_WORDS:
+            return TENS_WORDS[p] + "0"
+        return p if _DIGITS.match(p) and len(p) <= 2 else None
+    if len(parts) == 2 and parts[0] in TENS_WORDS and parts[1] in DIGIT_WORDS and DIGIT_WORDS[parts[1]] != "0":
+        return TENS_WORDS[parts[0]] + DIGIT_WORDS[parts[1]]
+    return None
+
+
+def hundreds_of(parts: Sequence[str]) -> str | None:
+    """The digits of a run said as numbers of hundreds, each of three digits ("five hundred one hundred six" ->
+    "500106", "five hundred three hundred twenty" -> "500320"), or None when the run is not such numbers."""
+    out = ""
+    k = 0
+    while k < len(parts):
+        lead = DIGIT_WORDS.get(parts[k], parts[k] if _DIGITS.match(parts[k]) and len(parts[k]) == 1 else None)
+        if k + 1 >= len(parts) or parts[k + 1] != "hundred" or lead in (None, "0"):
+            return None
+        end = next((j for j in range(k + 2, len(parts) - 1) if parts[j + 1] == "hundred"), len(parts))
+        rest = "0" if end == k + 2 else _below_a_hundred(parts[k + 2:end])
+        if rest is None:
+            return None
+        out += lead + rest.zfill(2)
+        k = end
+    return out or None
+
+
+def id_of(parts: Sequence[str]) -> str | None:
+    """The id a run of number parts says, read digit by digit (``digits_of``) or as numbers of hundreds
+    (``hundreds_of``), or None."""
+    for reading in (digits_of(parts), hundreds_of(parts)):
+        if reading and ID_PATTERN.match(reading):
+            return reading
+    return None
+
+
 def _repaired_id(before: str, repair: Sequence[Piece]) -> tuple[str, int] | None:
     """An id broken off and repaired ("five oh oh one one- no, one one one"): the repair says the id's last digits
     again, starting at a digit said before the break that it repeats (or right after the break). The id and how
@@ -519,7 +567,7 @@ def _first_id(run: Sequence[Piece], k: int) -> tuple[int, int] | None:
     five double-oh three one two" has one in its last five words, "500 320 five hundred one-oh-oh" two."""
     for a in range(k, len(run)):
         for b in range(len(run), a, -1):
-            if ID_PATTERN.match(digits_of(_parts(run[a:b])) or ""):
+            if id_of(_parts(run[a:b])):
                 return a, b
     return None
 
@@ -549,7 +597,8 @@ def _id_piece(run: Sequence[Piece], digits: str, changes: list[Change], also: Se
 
 def read_ids(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """Ids as people say and type them, read as six digits: digit by digit ("five oh oh one oh eight"), with
-    "double", "hundred" or a teen ("five oh oh one twelve"), split ("500 104", "500-104", "#500104"), several in
+    "double", "hundred" or a teen ("five oh oh one twelve"), as two numbers of hundreds ("five hundred one hundred
+    six"), split ("500 104", "500-104", "#500104"), several in
     one run of number words, and broken off and repaired ("five oh oh one one- no, one one one"). Number words
     that say no id are left as said."""
     out: list[Piece] = []
@@ -565,7 +614,7 @@ def read_ids(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
         while (found := _first_id(run, k)) is not None:
             a, b = found
             out += run[k:a]
-            out.append(_id_piece(run[a:b], digits_of(_parts(run[a:b])) or "", changes))
+            out.append(_id_piece(run[a:b], id_of(_parts(run[a:b])) or "", changes))
             k = b
         rest = run[k:]
         cue = _starts(pieces, j, REPAIR_CUES) if j < len(pieces) else 0
@@ -817,8 +866,116 @@ def resolve_value_repairs(pieces: list[Piece], changes: list[Change]) -> list[Pi
     return out
 
 
+# --- a table pasted from a spreadsheet ----------------------------------------------------------------------
+#: What separates a table's cells inside one typed word ("1;500320;500100", "qty,size,stack", "line|panel").
+_INNER_CELLS = re.compile(r"[;,|]")
+_NUMBER_WITH_COMMAS = re.compile(r"^\d{1,3}(?:,\d{3})+$")
+#: A cell that only numbers or dates a row of a table ("12", "3.", "07/12", "2026-12-07") under a label that is no
+#: field of the site (``_NUMBERING_LABELS``, or none of ``FIELD_LABELS``).
+_ROW_NUMBER = re.compile(r"^[#\d][\d/.:\-]*$")
+_NUMBERING_LABELS = frozenset({"line", "item", "no", "nr", "num", "number", "qty", "quantity", "date", "pos", "step",
+                               "seq", "ref"})
+#: The fewest cells of a table's header line.
+TABLE_CELLS = 2
+
+
+def _table_cells(pieces: Sequence[Piece]) -> dict[int, list[list[Piece]]]:
+    """Each line's cells, in order: the pieces split where the cell changes (``Piece.cell``: a tab or a comma or
+    semicolon after a word) and at a comma, a semicolon or a "|" inside a word ("1;500320;500100": pieces of their
+    own, from the same worker's word); a lone "|" only separates."""
+    lines: dict[int, list[list[Piece]]] = {}
+    last: tuple[int, int] | None = None
+    for p in pieces:
+        cells = lines.setdefault(p.cell[0], [])
+        if p.word == "|":
+            cells.append([])
+            last = None
+            continue
+        parts = [p.word]
+        if _INNER_CELLS.search(p.word) and not _SPLIT_ID.match(p.word) and not _NUMBER_WITH_COMMAS.match(p.word):
+            parts = _INNER_CELLS.split(p.word)
+        for k, part in enumerate(parts):
+            if k > 0 or p.cell != last or not cells:
+                cells.append([])
+            if part:
+                cells[-1].append(replace(p, word=part) if part != p.word else p)
+        last = p.cell
+    return {line: [c for c in cells if c] for line, cells in lines.items()}
+
+
+#: Words after a field's name in a header that say its value is an id or a number ("stud_id", "panel no").
+_ID_SUFFIXES = frozenset({"id", "no", "nr", "num", "number"})
+
+
+def _label(cell: Sequence[Piece]) -> str | None:
+    """The field a header cell names ("stud", "from_stack" -> "stack", "Panel ID" and "stud_no" -> "panel" and
+    "stud"), or None when the cell is no label (a number, an id, more than two words)."""
+    words = [w for p in cell for w in re.split(r"[_\-/.#]+", p.word.lower()) if w]
+    if not words or len(cell) > 2 or not all(w.isalpha() for w in words):
+        return None
+    if len(words) > 1 and words[-1] in _ID_SUFFIXES:  # "stud_id", "panel no": the field is the stud, the panel
+        return words[-2]
+    return words[-1]
+
+
+def _table_row(header: Sequence[Sequence[Piece]], row: Sequence[Sequence[Piece]],
+               changes: list[Change]) -> list[Piece]:
+    """One row of a table read as the words of a form: each value after its field's label ("stud 500100", "panel
+    500320"), a one-word value that says which before it ("left stack", "bottom row"), a value under a label that
+    is no field of the site as it stands ("vertical" under "orientation"), and a cell that only numbers or dates the
+    row ("12" under "line", "07/12" under "date") left out."""
+    out: list[Piece] = []
+    for label_cell, value in zip(header, row):
+        label = _label(label_cell)
+        said = tuple(k for p in label_cell for k in p.said)
+        words = [p.word for p in value]
+        numbering = label not in FIELD_LABELS or label in _NUMBERING_LABELS
+        if numbering and len(value) == 1 and _ROW_NUMBER.match(value[0].word) \
+                and not ID_PATTERN.match(value[0].word.lstrip("#")):
+            changes.append(Change("table", f"{' '.join(p.word for p in label_cell)} {value[0].word}", ""))
+            continue
+        if label not in FIELD_LABELS:
+            read = list(value)
+        elif len(value) == 1 and value[0].word.isalpha():
+            read = [*value, *_read_as([label], said, label_cell[-1])]
+        else:
+            read = [*_read_as([label], said, label_cell[-1]), *value]
+        changes.append(Change("table", f"{' '.join(p.word for p in label_cell)}: {' '.join(words)}",
+                              " ".join(p.word for p in read)))
+        out += [replace(p, paused=False, cell=(0, 0)) for p in read]
+    return out
+
+
+def read_tables(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A table pasted from a spreadsheet or a CSV file: a header line of at least ``TABLE_CELLS`` labels, at least
+    two of them fields of a form ("line;panel;stud;orientation", "qty, size, from_stack, stud"), and the lines
+    below it with as many cells, each read as a form's words (``_table_row``: "panel 500320 stud 500100 vertical").
+    The header's words are read where its labels are; the lines around the table stay as written."""
+    if len({p.cell[0] for p in pieces}) < 2:
+        return pieces
+    lines = _table_cells(pieces)
+    order = sorted(lines)
+    out: list[Piece] = []
+    k = 0
+    while k < len(order):
+        header = lines[order[k]]
+        labels = [_label(c) for c in header]
+        rows = []
+        if len(header) >= TABLE_CELLS and None not in labels and sum(l in FIELD_LABELS for l in labels) >= 2:
+            rows = list(itertools.takewhile(lambda line: len(lines[line]) == len(header), order[k + 1:]))
+        if not rows:
+            out += [p for p in pieces if p.cell[0] == order[k]]
+            k += 1
+            continue
+        changes.append(Change("table", " | ".join(" ".join(p.word for p in c) for c in header), ""))
+        for line in rows:
+            out += _table_row(header, lines[line], changes)
+        k += 1 + len(rows)
+    return out
+
+
 #: The front end's steps, in order.
-STEPS: tuple[Step, ...] = (split_fields, read_offsets, translate_code_switch, expand_shorthand, drop_fillers, read_ids,
+STEPS: tuple[Step, ...] = (read_tables, split_fields, read_offsets, translate_code_switch, expand_shorthand, drop_fillers, read_ids,
                            resolve_value_repairs, resolve_false_starts, metric_sizes, singular_sizes)
 
 
@@ -834,12 +991,18 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
     dash loses the dash; a label's full stop is kept for the lexicon."""
     said: list[str] = []
     pieces: list[Piece] = []
-    for raw in text.split():
-        for word in tokenize(raw):
-            broken_off = bool(_BROKEN_OFF.search(raw))
-            read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word
-            pieces.append(Piece(read, (len(said),), broken_off, paused=bool(_PAUSE.search(raw))))
-            said.append(word)
+    for line, text_line in enumerate(text.split("\n")):
+        cell = 0
+        for k, between_tabs in enumerate(text_line.split("\t")):
+            cell += k > 0
+            for raw in between_tabs.split():
+                for word in tokenize(raw):
+                    broken_off = bool(_BROKEN_OFF.search(raw))
+                    read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word
+                    paused = bool(_PAUSE.search(raw))
+                    pieces.append(Piece(read, (len(said),), broken_off, paused=paused, cell=(line, cell)))
+                    said.append(word)
+                cell += bool(_PAUSE.search(raw))
     return said, pieces
 
 

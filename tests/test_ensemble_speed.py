@@ -167,3 +167,19 @@ def test_moving_and_saving_keep_the_fast_path(tmp_path) -> None:
     assert loaded.predict(SMALL) == tagger.predict(SMALL)
     for a, b in zip(loaded.predict_marginals(SMALL), tagger.predict_marginals(SMALL)):
         np.testing.assert_allclose(a, b, rtol=0, atol=TOLERANCE)
+
+
+def test_the_members_read_side_by_side_give_the_same_emissions(shipped, test_sentences) -> None:
+    """A short batch's members' LSTMs run side by side, each on one thread (``_side_by_side``): the same
+    arithmetic as one after the other, so the same emissions bit for bit, packed or not."""
+    for batch in ([test_sentences[0]], test_sentences[:3], [["go"], test_sentences[1]]):
+        with torch.inference_mode():
+            inputs = shipped._fused.inputs(batch)
+            before = torch.get_num_threads()
+            torch.set_num_threads(1)
+            try:
+                apart = shipped._fused.emissions(*inputs, concurrent=False)
+                together = shipped._fused.emissions(*inputs, concurrent=True)
+            finally:
+                torch.set_num_threads(before)
+        assert torch.equal(apart, together)

@@ -31,7 +31,8 @@ keeping the meaning and carrying every word's tag along:
   it ("line;panel;stud;edge" / "3;500320;500104;centre line").
 
 The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides, the code switch, the glued
-fields and the values taken back into the corpus's written forms; the tagger must learn the others. Whole channels and pairs of channels are held back from the
+fields, the values taken back and the pasted tables into the corpus's written forms; the tagger must learn the
+others, and the IM reads a step that goes on from the last stud (``im.stud.stud_going_on``). Whole channels and pairs of channels are held back from the
 training splits (``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction
 said in a way the tagger never met (first sight).
 """
@@ -831,6 +832,38 @@ GOING_ON_FORMS = ("{n} studs further {s}", "{n} more to the {s}", "{n} studs ove
                   "{n} stud more {s}", "{n} over to the {s}")
 
 
+def _step_from_the_last(sentence: Phrase, i: int) -> tuple[int, str] | None:
+    """A stud counted from the previous one that starts at ``i`` ("two studs to the right of the previous stud",
+    "one to the left of the one you just used", "three over to the right of that one"): (the end of its words, the
+    side), or None. The anchor is the ``St_loc2`` words after "of" (a few untagged words may come first: "of the one
+    you just used"), and they point back (``im.words.points_back``)."""
+    from drywall_lab.im.words import ids_in, points_back, says_end
+
+    tok = sentence[i]
+    if not (tok.is_word and tok.tag == "St_loc1" and tok.word.lower() in _COUNTS):
+        return None
+    j, side = i + 1, None
+    while j < len(sentence) and sentence[j].is_word and (sentence[j].tag == "St_loc1" or (
+            sentence[j].tag == "O" and sentence[j].word.lower() in _SUM_FILLER)) and side is None:
+        side = sentence[j].word.lower() if sentence[j].word.lower() in ("left", "right") else None
+        j += 1
+    if side is None or sentence[j - 1].word.lower() != side or j >= len(sentence) or sentence[j].word.lower() != "of":
+        return None
+    k = j + 1
+    while k < min(len(sentence), j + 5) and sentence[k].is_word and sentence[k].tag == "O":
+        k += 1
+    e = k
+    while e < len(sentence) and sentence[e].is_word and sentence[e].tag == "St_loc2":
+        e += 1
+    anchor = [t.word for t in sentence[k:e]]
+    if not anchor or not points_back(anchor) or ids_in(anchor) or says_end(anchor):
+        return None
+    while e < len(sentence) and sentence[e].is_word and sentence[e].tag == "O" and \
+            sentence[e].word.lower() in ("stud", "one", "used", "installed", "hung"):
+        e += 1
+    return e, side
+
+
 def continued_steps(ch: Chooser, sentences: Sentences) -> Sentences:
     """A stud counted from the previous one said as going on from where the work is, the anchor left unsaid ("two
     studs to the right of the previous stud" -> "two studs further right", "one more to the left", "three over to the
@@ -840,12 +873,12 @@ def continued_steps(ch: Chooser, sentences: Sentences) -> Sentences:
         new: Phrase = []
         i = 0
         while i < len(sentence):
-            found = _sum_at(sentence, i)
-            if found is None or found[1] not in ("prev", "last"):
+            found = _step_from_the_last(sentence, i)
+            if found is None:
                 new.append(sentence[i])
                 i += 1
                 continue
-            e, _, side, _ = found
+            e, side = found
             count = sentence[i]
             for k, word in enumerate(ch.rng.choice(GOING_ON_FORMS).format(n=count.word, s=side).split()):
                 tag = "O" if word in ("stud", "studs") else "St_loc1"
@@ -1066,7 +1099,7 @@ HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: Held back whole and laid over the novel split's instructions at this rate, on top of their held-back channel or pair,
 #: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
 HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1, "value_repairs": 0.1,
-                                        "continued_steps": 0.1, "pasted_tables": 0.05}
+                                        "continued_steps": 0.5, "pasted_tables": 0.05}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))
@@ -1098,14 +1131,24 @@ def overlay_rng(row_id: str, name: str) -> Chooser:
     return Chooser(random.Random(f"{row_id}-{name}"), novel=True)
 
 
+def overlay_drawn(row_id: str, name: str) -> tuple[Chooser, bool]:
+    """An overlay's draws on one row, and whether its own draw lays it over the row (at its rate)."""
+    ch = overlay_rng(row_id, name)
+    return ch, ch.chance(HELD_BACK_OVERLAYS[name])
+
+
 def apply_overlays(row_id: str, sentences: Sentences) -> tuple[Sentences, tuple[str, ...]]:
-    """A novel instruction through each overlay channel its own draw picks (``HELD_BACK_OVERLAYS``), and their names."""
+    """A novel instruction through each overlay channel its own draw picks (``HELD_BACK_OVERLAYS``), and the names of
+    those that changed it (an overlay with nothing to rewrite, "two studs further right" in an instruction with no
+    step from the last stud, leaves the row as it was and unnamed)."""
     applied = []
-    for name, rate in HELD_BACK_OVERLAYS.items():
-        ch = overlay_rng(row_id, name)
-        if ch.chance(rate):
-            sentences = CHANNELS[name](ch, sentences)
-            applied.append(name)
+    for name in HELD_BACK_OVERLAYS:
+        ch, drawn = overlay_drawn(row_id, name)
+        if drawn:
+            said = CHANNELS[name](ch, sentences)
+            if said != sentences:
+                applied.append(name)
+            sentences = said
     return sentences, tuple(applied)
 
 

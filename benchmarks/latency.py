@@ -12,7 +12,7 @@ This script times, on the test split (158 instructions) and on the CPU:
 (a') ``lstm_read``: the same after the front end (``drywall_lab.nlu.normalise``): the shipped NLU, normaliser and
     tagger, which issue 29 wants at least 20 times faster than (c);
 (b') ``lstm_decided``: the shipped tagger as ``run`` uses it, with the decision layer: its readings
-    (``predict_confidence``: k best sequences and marginals) and ``drywall_lab.decision.decide`` against
+    (``decision.readings``: the k best sequences) and ``drywall_lab.decision.decide`` against
     an empty wall, timed in the same run as ``lstm`` (issue 29: at most 1.5 times as slow; issue 12 allowed twice);
 (c) ``bert_base``: an encoder of the paper's size (``transformers.BertConfig()`` defaults: 12 layers,
     768 hidden units, 12 heads, 110 M parameters) with *random* weights (offline, there is no
@@ -79,12 +79,11 @@ class DecidedTagger:
         self.tagger, self.settings = tagger, DEFAULT_SETTINGS
 
     def predict(self, sentences, batch_size: int = 64) -> list[list[str]]:
-        from drywall_lab.decision import decide
+        from drywall_lab.decision import decide, readings
         from drywall_lab.im import ActionHistory
 
-        confidences = self.tagger.predict_confidence(sentences, k=self.settings.k, batch_size=batch_size)
         return [decide(words, c.kbest, c.marginals, self.tagger.labels, ActionHistory(), self.settings).tags
-                for words, c in zip(sentences, confidences)]
+                for words, c in zip(sentences, readings(self.tagger, sentences, self.settings.k))]
 
 
 class ReadTagger:

@@ -268,6 +268,9 @@ class StoredReadings:
             raise ValueError(f"the readings were stored with k={self.k}, not k={k}")
         return [self._stored[tuple(s)] for s in sentences]
 
+    def predict_kbest(self, sentences: Sequence[Sequence[str]], k: int, batch_size: int = 64) -> list:
+        return [c.kbest for c in self.predict_confidence(sentences, k, batch_size)]
+
     def __len__(self) -> int:
         return len(self._stored)
 

@@ -2,7 +2,7 @@
 spec section 5, ``unclear``).
 
 The paper's pipeline acts on the single best tag sequence. This module reads the tagger's **k best** tag sequences
-instead (``Tagger.predict_confidence``), puts each through the information-mapping rules against the site and the
+instead (``Tagger.predict_kbest``: ``readings``), puts each through the information-mapping rules against the site and the
 action history, and decides in one step:
 
 1. **Candidates.** Each reading *r* is a candidate, with the command (or refusal) the rules make of it. After an
@@ -62,6 +62,7 @@ from drywall_lab.im.placement import resolve_placement
 from drywall_lab.im.stud import STUD_RULES, resolve_stud
 from drywall_lab.im.target import TARGET_RULES, resolve_target
 from drywall_lab.im.trace import TaggedInstruction
+from drywall_lab.nlu.base import TagConfidence
 from drywall_lab.site import Placement
 
 
@@ -575,9 +576,16 @@ def decide_tags(words: Sequence[str], tags: Sequence[str], labels: Sequence[str]
 # --- one instruction, whole episodes ----------------------------------------------------------------------
 def decide_instruction(words: Sequence[str], tagger, history: ActionHistory,
                        settings: DecisionSettings = DEFAULT_SETTINGS) -> Decision:
-    """The decision for one instruction's words: the tagger's readings (``predict_confidence``), then ``decide``."""
-    confidence = tagger.predict_confidence([list(words)], k=settings.k)[0]
-    return decide(list(words), confidence.kbest, confidence.marginals, tagger.labels, history, settings)
+    """The decision for one instruction's words: the tagger's readings (``readings``), then ``decide``."""
+    reading = readings(tagger, [list(words)], settings.k)[0]
+    return decide(list(words), reading.kbest, reading.marginals, tagger.labels, history, settings)
+
+
+def readings(tagger, sentences: Sequence[Sequence[str]], k: int) -> list[TagConfidence]:
+    """The tagger's k best readings of each word list (``predict_kbest``), as ``play_episode`` and ``decide_rows``
+    take them: ``TagConfidence`` without marginals (None), which ``decide`` does not read (the k best alone need only
+    the CRF's forward pass)."""
+    return [TagConfidence(kbest[0][0], None, kbest) for kbest in tagger.predict_kbest(sentences, k=k)]
 
 
 def interpret_instruction(words: Sequence[str], tagger, history: ActionHistory,
@@ -704,7 +712,7 @@ def decide_episode(instructions: Sequence[Sequence[str]], tagger, settings: Deci
     (``play_episode`` on the tagger's readings)."""
     history = history if history is not None else ActionHistory()
     instructions = [list(w) for w in instructions]
-    confidences = tagger.predict_confidence(instructions, k=settings.k) if instructions else []
+    confidences = readings(tagger, instructions, settings.k) if instructions else []
     return play_episode(instructions, confidences, tagger.labels, history, settings, im_interpret)
 
 
@@ -726,11 +734,11 @@ def decide_rows(rows: Sequence[Mapping], tagger, settings: DecisionSettings = DE
                 confidences=None) -> list[Decision]:
     """One decision per corpus row, each in its own context (the accepted commands before it in its episode).
 
-    ``confidences`` (``tagger.predict_confidence`` of the rows' words) may be given to decide the same
+    ``confidences`` (``readings`` or ``tagger.predict_confidence`` of the rows' words) may be given to decide the same
     rows under several settings without tagging them again; ``tagger`` then only gives its ``labels``.
     """
     if confidences is None:
-        confidences = tagger.predict_confidence([list(r["words"]) for r in rows], k=settings.k)
+        confidences = readings(tagger, [list(r["words"]) for r in rows], settings.k)
     return [decide(r["words"], c.kbest, c.marginals, tagger.labels,
                    ActionHistory.from_commands(r["context"]["history"]), settings)
             for r, c in zip(rows, confidences)]

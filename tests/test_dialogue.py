@@ -36,6 +36,9 @@ class ScriptedTagger:
             out.append(TagConfidence(kbest[0][0], marginals, kbest[:k]))
         return out
 
+    def predict_kbest(self, sentences, k, batch_size=64):
+        return [c.kbest for c in self.predict_confidence(sentences, k, batch_size)]
+
 
 CENTRE = "put the 2 by 8 on stud 500104 centre line"
 READINGS = {
@@ -196,6 +199,10 @@ def test_an_instruction_too_long_is_refused_before_tagging():
         def predict_confidence(self, sentences, k=5, batch_size=64):
             assert all(len(s) <= MAX_INSTRUCTION_WORDS for s in sentences), "a long instruction was tagged"
             return super().predict_confidence(sentences, k, batch_size)
+
+        def predict_kbest(self, sentences, k, batch_size=64):
+            assert all(len(s) <= MAX_INSTRUCTION_WORDS for s in sentences), "a long instruction was tagged"
+            return super().predict_kbest(sentences, k, batch_size)
 
     readings = {**READINGS, "": [("", 1.0)]}
     long_text = "put the full sheet on stud 500100 " * 30_000

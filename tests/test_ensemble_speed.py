@@ -42,8 +42,9 @@ def assert_same_outputs(tagger: CrfEnsembleTagger, sentences: list[list[str]], k
         np.testing.assert_allclose(f.marginals, r.marginals, rtol=0, atol=TOLERANCE)
     for f, r in zip(tagger.predict_marginals(sentences, batch_size), reference):
         np.testing.assert_allclose(f, r.marginals, rtol=0, atol=TOLERANCE)
-    for f, r in zip(tagger.predict_kbest(sentences, k, batch_size), reference):
+    for f, r in zip(tagger.predict_kbest(sentences, k, batch_size), reference):  # log Z from the forward half alone
         assert [tags for tags, _ in f] == [tags for tags, _ in r.kbest]
+        np.testing.assert_allclose([p for _, p in f], [p for _, p in r.kbest], rtol=0, atol=TOLERANCE)
 
 
 def assert_same_emissions(tagger: CrfEnsembleTagger, batch: list[list[str]]) -> None:

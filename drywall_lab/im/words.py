@@ -264,7 +264,7 @@ def stack_place(words: Sequence[str]) -> list[int]:
     ([2], [1])
     """
     norm = [normalise(w) for w in words]
-    out = [i for i in range(1, len(norm) - 1) if _names_the_uppermost(norm, i)]
+    out = [i for i in range(1, len(norm) - 1) if norm[i] in UPPERMOST_WORDS and _names_the_uppermost(norm, i)]
     if STACK_WORDS.isdisjoint(norm):
         return out
     for i, w in enumerate(norm[:-2]):

@@ -71,12 +71,13 @@ class TagConfidence:
     """One instruction's tags with the tagger's confidence in them (``Tagger.predict_confidence``).
 
     ``tags``: what ``predict`` gives; ``marginals``: (n_words, n_labels), each word's
-    probability of each label (columns in the tagger's ``labels`` order); ``kbest``: the
-    k most probable tag sequences with their log-probabilities, best first.
+    probability of each label (columns in the tagger's ``labels`` order), None where only the
+    k best were asked for (``decision.readings``); ``kbest``: the k most probable tag sequences
+    with their log-probabilities, best first.
     """
 
     tags: list[str]
-    marginals: np.ndarray
+    marginals: np.ndarray | None
     kbest: KBest
 
 

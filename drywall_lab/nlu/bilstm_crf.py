@@ -224,6 +224,47 @@ def _numpy_parts(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor):
     return tuple(x.detach().cpu().numpy() for x in (e, mask, start, end, trans))
 
 
+def _scaled_forward(e: np.ndarray, mask: np.ndarray, start: np.ndarray, end: np.ndarray, trans: np.ndarray):
+    """The forward half of ``_forward_backward``: (alpha, each word's forward vector scaled to sum 1; log Z;
+    the exponentiated emissions, transitions and end scores that the backward half reuses). A step whose every
+    row goes on skips the mask's bookkeeping (one instruction at a time, the decision's case)."""
+    batch, time, n_tags = e.shape
+    shift = e.max(axis=2)
+    emit = np.exp(e - shift[:, :, None])
+    t_max = trans.max()
+    step = np.exp(trans - t_max)
+    every = mask.all(axis=0)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+        alpha = np.empty_like(e)
+        a = np.exp(start - start.max()) * emit[:, 0]
+        scale = a.sum(axis=1)
+        log_z = np.log(scale) + start.max() + shift[:, 0]
+        alpha[:, 0] = a = a / scale[:, None]
+        for t in range(1, time):
+            nxt = (a @ step) * emit[:, t]
+            scale = nxt.sum(axis=1)
+            if every[t]:
+                a = nxt / scale[:, None]
+                log_z = log_z + (np.log(scale) + t_max + shift[:, t])
+            else:
+                on = mask[:, t]
+                a = np.where(on[:, None], nxt / scale[:, None], a)
+                log_z = log_z + np.where(on, np.log(scale) + t_max + shift[:, t], 0.0)
+            alpha[:, t] = a
+        final = np.exp(end - end.max())
+        log_z = log_z + np.log((a * final).sum(axis=1)) + end.max()
+    return alpha, log_z, (emit, step, final)
+
+
+def _log_partition(e: np.ndarray, mask: np.ndarray, start: np.ndarray, end: np.ndarray,
+                   trans: np.ndarray) -> np.ndarray:
+    """log Z alone, from the forward half (what the k best's log-probabilities need: no marginals)."""
+    log_z = _scaled_forward(e, mask, start, end, trans)[1]
+    if not np.isfinite(log_z).all():
+        return _forward_backward_log(e, mask, start, end, trans)[1]
+    return log_z
+
+
 def _forward_backward(e: np.ndarray, mask: np.ndarray, start: np.ndarray, end: np.ndarray,
                       trans: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(marginals, log Z): forward-backward with a scale factor at every word (Rabiner's scaling).
@@ -234,25 +275,8 @@ def _forward_backward(e: np.ndarray, mask: np.ndarray, start: np.ndarray, end: n
     span more than about 700 nats, in which case the log-space recursion is used instead.
     """
     batch, time, n_tags = e.shape
-    shift = e.max(axis=2)
-    emit = np.exp(e - shift[:, :, None])
-    t_max = trans.max()
-    step = np.exp(trans - t_max)
+    alpha, log_z, (emit, step, final) = _scaled_forward(e, mask, start, end, trans)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
-        alpha = np.empty_like(e)
-        a = np.exp(start - start.max()) * emit[:, 0]
-        scale = a.sum(axis=1)
-        log_z = np.log(scale) + start.max() + shift[:, 0]
-        alpha[:, 0] = a = a / scale[:, None]
-        for t in range(1, time):
-            nxt = (a @ step) * emit[:, t]
-            scale = nxt.sum(axis=1)
-            on = mask[:, t]
-            a = np.where(on[:, None], nxt / scale[:, None], a)
-            log_z = log_z + np.where(on, np.log(scale) + t_max + shift[:, t], 0.0)
-            alpha[:, t] = a
-        final = np.exp(end - end.max())
-        log_z = log_z + np.log((a * final).sum(axis=1)) + end.max()
         beta = np.empty_like(e)
         beta[:, time - 1] = b = np.broadcast_to(final, (batch, n_tags))
         for t in range(time - 2, -1, -1):
@@ -292,7 +316,7 @@ def _forward_backward_log(e, mask, start, end, trans) -> tuple[np.ndarray, np.nd
 
 def crf_log_partition(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
     """log Z for each sequence (batch-first emissions), float64: the log-sum-exp of all tag sequences' scores."""
-    return torch.from_numpy(_forward_backward(*_numpy_parts(crf, emissions, mask))[1])
+    return torch.from_numpy(_log_partition(*_numpy_parts(crf, emissions, mask)))
 
 
 def crf_marginals(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
@@ -327,12 +351,17 @@ def _kbest(e: np.ndarray, mask: np.ndarray, start: np.ndarray, end: np.ndarray, 
     pointers = []  # per step t >= 1: (batch, tags, k) index into the previous step's tags * k + rank
     keep = np.broadcast_to(np.arange(n_tags * k).reshape(1, n_tags, k), (batch, n_tags, k))
     into = np.repeat(trans, k, axis=0)[None]  # row j * k + r: from tag j
+    every = mask.all(axis=0)
     for t in range(1, time):
         candidates = scores.reshape(batch, n_tags * k, 1) + into + e[:, t, None, :]
         best, index = (x.numpy() for x in torch.from_numpy(candidates).topk(k, dim=1))  # (batch, k, tags)
-        on = mask[:, t, None, None]
-        scores = np.where(on, best.transpose(0, 2, 1), scores)
-        pointers.append(np.where(on, index.transpose(0, 2, 1), keep))
+        if every[t]:  # every row goes on: no padding to keep
+            scores = best.transpose(0, 2, 1)
+            pointers.append(index.transpose(0, 2, 1))
+        else:
+            on = mask[:, t, None, None]
+            scores = np.where(on, best.transpose(0, 2, 1), scores)
+            pointers.append(np.where(on, index.transpose(0, 2, 1), keep))
     final = (scores + end[None, :, None]).reshape(batch, n_tags * k)
     top, where = (x.numpy() for x in torch.from_numpy(final).topk(k, dim=1))
     lengths = mask.sum(axis=1)
@@ -359,7 +388,9 @@ def crf_kbest(crf: CRF, emissions: torch.Tensor, mask: torch.Tensor, k: int) -> 
     Per sequence: at most k (fewer when fewer tag sequences exist), best first; ties keep
     ``torch.topk``'s order. The first is the Viterbi path that ``crf.decode`` gives.
     """
-    return crf_confidence(crf, emissions, mask, k)[1]
+    k = check_k(k)
+    parts = _numpy_parts(crf, emissions, mask)
+    return _kbest(*parts, k, _log_partition(*parts))
 
 
 def fill_confidence(out: list[TagConfidence], index: Sequence[int], sentences: Sequence[Sequence[str]],

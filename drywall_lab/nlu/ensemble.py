@@ -56,7 +56,7 @@ from torchcrf import CRF
 from drywall_lab.corpus.tags import TAGS
 from drywall_lab.nlu.base import (KBest, Sentences, TagConfidence, Tagger, TaggerLoadError, check_k, load_tagger,
                                    resolve_device)
-from drywall_lab.nlu.bilstm_crf import (CHAR_KERNEL_SIZE, BiLstmCrfTagger, _forward_backward, _kbest,
+from drywall_lab.nlu.bilstm_crf import (CHAR_KERNEL_SIZE, BiLstmCrfTagger, _forward_backward, _kbest, _log_partition,
                                          crf_confidences, fill_confidence, no_confidences, viterbi_tags)
 
 MEMBER_DIR = "member{}"
@@ -401,7 +401,21 @@ class CrfEnsembleTagger(Tagger):
         return [c.marginals for c in self.predict_confidence(sentences, k=1, batch_size=batch_size)]
 
     def predict_kbest(self, sentences: Sentences, k: int, batch_size: int = 64) -> list[KBest]:
-        return [c.kbest for c in self.predict_confidence(sentences, k=k, batch_size=batch_size)]
+        """The k best sequences of the averaged CRF with their log-probabilities, from the forward half alone
+        (log Z; no marginals): the readings the decision weighs, a third cheaper than ``predict_confidence``."""
+        if self._fused is None:
+            return [c.kbest for c in self._reference_confidence(sentences, k, batch_size)]
+        k = check_k(k)
+        sentences = self._checked(sentences, "predict_kbest")
+        out: list[KBest] = [[([], 0.0)] for _ in sentences]
+        for index, emissions, lengths in self._fast_batches(sentences, batch_size):
+            e = emissions.astype(np.float64)
+            mask = np.arange(e.shape[1])[None, :] < lengths[:, None]
+            with torch.inference_mode():
+                kbest = _kbest(e, mask, *self._scores64, k, _log_partition(e, mask, *self._scores64))
+            for row, i in enumerate(index):
+                out[i] = [([self.labels[t] for t in path], log_p) for path, log_p in kbest[row]]
+        return out
 
     def predict_confidence(self, sentences: Sentences, k: int = 5, batch_size: int = 64) -> list[TagConfidence]:
         """Viterbi tags, forward-backward marginals and the k best sequences of the averaged CRF."""

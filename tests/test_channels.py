@@ -318,6 +318,18 @@ def test_continued_steps_leave_the_anchor_unsaid_and_the_im_counts_from_the_prev
 
 
 @pytest.mark.parametrize("seed", range(20))
+@pytest.mark.parametrize("anchor, stud", [("the previous/St_loc2 stud", "500106"), ("500106/St_loc2", "500108"),
+                                          ("the seventh/St_loc2 stud", "500108")])
+def test_an_anchor_said_first_is_read_back_as_the_same_command(seed, anchor, stud):
+    sentence = _phrase(f"put the full/dim sheet two/St_loc1 studs to/St_loc1 the/St_loc1 right/St_loc1 of {anchor} "
+                       "please")
+    out = C.anchor_first(Chooser(random.Random(seed)), [sentence])
+    text, outcome = _read_outcome(out)
+    assert text.index(anchor.split("/")[0].split()[-1]) < text.index("two"), text  # the anchor comes first
+    assert outcome["stud_id"] == stud, text
+
+
+@pytest.mark.parametrize("seed", range(20))
 def test_a_pasted_table_is_read_back_as_the_same_command(seed):
     sentence = _phrase("grab the full/dim sheet from the left/Dw_loc1 pile and put it two/St_loc1 studs to/St_loc1 "
                        "the/St_loc1 right/St_loc1 of the previous/St_loc2 stud on the centre/Vr_md line/Vr_md")

@@ -225,7 +225,8 @@ def test_every_word_read_comes_from_the_workers_words_in_order(words):
     assert n.said == tuple(tokenize(" ".join(words)))
     assert len(n.words) == len(n.sources)
     # in order: a word read comes from no earlier words than the one before it (the words of a phrase read as a
-    # phrase, "la de" -> "the one", all come from the whole phrase)
+    # phrase, "la de" -> "the one", all come from the whole phrase; only ``anchor_last`` moves words, an anchor said
+    # before its step, which these words never make)
     assert all(0 <= i < len(n.said) for sources in n.sources for i in sources)
     assert all(list(s) == sorted(s) for s in n.sources)
     assert all(a[0] <= b[0] and a[-1] <= b[-1] for a, b in zip(n.sources, n.sources[1:]) if a and b)
@@ -310,3 +311,29 @@ def test_a_tables_header_gives_its_words_to_the_labels_and_a_row_number_is_dropp
     assert n.words == ("panel", "500321", "stud", "500103")
     assert n.sources == ((0,), (1,), (0,), (1,))
     assert [c.kind for c in n.changes].count("table") == 4  # the header, the row number dropped, two fields
+
+
+@pytest.mark.parametrize("said, read", [
+    ("from the previous stud, two studs to the right", "two studs to the right of the previous stud"),
+    ("starting at 500104 go three right", "three right of 500104"),
+    ("counting from 500102 stud two to the left", "two to the left of 500102 stud"),
+    ("from the 4th stud three over to the left", "three over to the left of the 4th stud"),
+    ("from the fourth from the right end one to the right", "one to the right of the fourth from the right end"),
+    ("the last one, two to the left", "two to the left of the last one"),  # no lead: an anchor that points back
+    ("500104 two to the left", "500104 two to the left"),  # no lead, an id: the end of another field
+    ("on the last stud two more right", "on the last stud two more right"),  # inside "on the ...": no anchor
+    ("take it from the left stack two studs right", "take it from the left stack two studs right"),  # a stack
+    ("the fourth stud from the right", "the fourth stud from the right"),  # no step after it
+    ("from the previous stud two to the right of 500104", "from the previous stud two to the right of 500104"),
+])
+def test_an_anchor_said_before_its_step_is_read_after_it(said, read):
+    assert N.normalise_text(said) == read
+
+
+def test_an_anchor_moved_after_its_step_keeps_its_words_tags():
+    n = N.normalise("from the previous stud two studs to the right")
+    said_tags = ["O", "O", "St_loc2", "O", "St_loc1", "O", "St_loc1", "St_loc1", "St_loc1"]
+    assert n.words == ("two", "studs", "to", "the", "right", "of", "the", "previous", "stud")
+    assert n.tags_of_words(said_tags) == ["St_loc1", "O", "St_loc1", "St_loc1", "St_loc1", "O", "O", "St_loc2", "O"]
+    assert n.tags_of_said(n.tags_of_words(said_tags)) == said_tags  # "from" was dropped: O
+    assert [c.kind for c in n.changes] == ["anchor first"]

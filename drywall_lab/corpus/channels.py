@@ -29,9 +29,11 @@ keeping the meaning and carrying every word's tag along:
   unsaid ("two studs further right", "one more to the left", "three over to the right").
 - ``pasted_tables``: the instruction pasted from a spreadsheet, a header line of labels and a line of values under
   it ("line;panel;stud;edge" / "3;500320;500104;centre line").
+- ``anchor_first``: a stud counted from an anchor said before the step, as verb-final languages order it ("from the
+  previous stud, two to the right", "starting at 500104 go three to the left").
 
 The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides, the code switch, the glued
-fields, the values taken back and the pasted tables into the corpus's written forms; the tagger must learn the
+fields, the values taken back, the pasted tables and an anchor said first into the corpus's written forms; the tagger must learn the
 others, and the IM reads a step that goes on from the last stud (``im.stud.stud_going_on``). Whole channels and pairs of channels are held back from the
 training splits (``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction
 said in a way the tagger never met (first sight).
@@ -839,6 +841,21 @@ def _step_from_the_last(sentence: Phrase, i: int) -> tuple[int, str] | None:
     you just used"), and they point back (``im.words.points_back``)."""
     from drywall_lab.im.words import ids_in, points_back, says_end
 
+    found = _counted_step(sentence, i)
+    if found is None:
+        return None
+    e, side, of = found
+    anchor = [t.word for t in sentence[of + 1:e] if t.tag == "St_loc2"]
+    if not points_back(anchor) or ids_in(anchor) or says_end(anchor):
+        return None
+    return e, side
+
+
+def _counted_step(sentence: Phrase, i: int, links: tuple[str, ...] = ("of",)) -> tuple[int, str, int] | None:
+    """A stud counted from an anchor that starts at ``i`` ("two studs to the right of the previous stud", "one to the
+    left of 500104"; with ``links`` ("of", "from"), "two right from 500104" too): (the end of its words, the side,
+    the position of the link), or None. The anchor is the ``St_loc2`` words after the link (a few untagged words may
+    come first), and a few untagged nouns after them ("stud", "one")."""
     tok = sentence[i]
     if not (tok.is_word and tok.tag == "St_loc1" and tok.word.lower() in _COUNTS):
         return None
@@ -847,7 +864,7 @@ def _step_from_the_last(sentence: Phrase, i: int) -> tuple[int, str] | None:
             sentence[j].tag == "O" and sentence[j].word.lower() in _SUM_FILLER)) and side is None:
         side = sentence[j].word.lower() if sentence[j].word.lower() in ("left", "right") else None
         j += 1
-    if side is None or sentence[j - 1].word.lower() != side or j >= len(sentence) or sentence[j].word.lower() != "of":
+    if side is None or sentence[j - 1].word.lower() != side or j >= len(sentence) or sentence[j].word.lower() not in links:
         return None
     k = j + 1
     while k < min(len(sentence), j + 5) and sentence[k].is_word and sentence[k].tag == "O":
@@ -855,13 +872,12 @@ def _step_from_the_last(sentence: Phrase, i: int) -> tuple[int, str] | None:
     e = k
     while e < len(sentence) and sentence[e].is_word and sentence[e].tag == "St_loc2":
         e += 1
-    anchor = [t.word for t in sentence[k:e]]
-    if not anchor or not points_back(anchor) or ids_in(anchor) or says_end(anchor):
+    if e == k:
         return None
     while e < len(sentence) and sentence[e].is_word and sentence[e].tag == "O" and \
             sentence[e].word.lower() in ("stud", "one", "used", "installed", "hung"):
         e += 1
-    return e, side
+    return e, side, j
 
 
 def continued_steps(ch: Chooser, sentences: Sentences) -> Sentences:
@@ -884,6 +900,40 @@ def continued_steps(ch: Chooser, sentences: Sentences) -> Sentences:
                 tag = "O" if word in ("stud", "studs") else "St_loc1"
                 word = "stud" if word == "studs" and count.word.lower() in ("one", "1") else word
                 new.append(count if k == 0 else Token(word, tag, count.coref if tag != "O" else "O"))
+            i = e
+        out.append(new)
+    return out
+
+
+#: How an anchor said first is led in ("from the previous stud, two to the right").
+ANCHOR_LEADS = (("from",), ("from",), ("starting", "from"), ("counting", "from"), ("starting", "at"))
+
+
+def anchor_first(ch: Chooser, sentences: Sentences) -> Sentences:
+    """A stud counted from an anchor, the anchor said first as verb-final languages and people thinking aloud put it
+    ("two studs to the right of the previous stud" -> "from the previous stud two studs to the right", "starting at
+    500104 go three to the left"; an anchor that points back sometimes with no lead: "the last one two to the
+    left"). The words keep their tags; the link ("of", "from") goes, a lead ("from") and a "go" are ``O``. The front end puts the
+    anchor back after the step (``nlu.normalise.anchor_last``)."""
+    from drywall_lab.im.words import ids_in, points_back
+
+    out: Sentences = []
+    for sentence in sentences:
+        new: Phrase = []
+        i = 0
+        while i < len(sentence):
+            found = _counted_step(sentence, i, ("of", "from"))
+            if found is None:
+                new.append(sentence[i])
+                i += 1
+                continue
+            e, _, of = found
+            anchor = list(sentence[of + 1:e])
+            words = [t.word for t in anchor if t.tag == "St_loc2"]
+            back = points_back(words) and not ids_in(words)
+            lead = () if back and ch.chance(0.25) else ch.rng.choice(ANCHOR_LEADS)
+            go = ("go",) if ch.chance(0.2) else ()
+            new += [Token(w, "O", "O") for w in lead] + anchor + [Token(w, "O", "O") for w in go] + list(sentence[i:of])
             i = e
         out.append(new)
     return out
@@ -1076,7 +1126,7 @@ CHANNELS: dict[str, Channel] = {
     "spoken_ids": spoken_ids, "shorthand": shorthand,
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
     "code_switch": code_switch, "openers": openers, "glued_fields": glued_fields, "value_repairs": value_repairs,
-    "continued_steps": continued_steps, "pasted_tables": pasted_tables,
+    "continued_steps": continued_steps, "pasted_tables": pasted_tables, "anchor_first": anchor_first,
 }
 #: A row whose target is said by a property ("the narrow one") instead of its size, in every split: drawn where the
 #: target is said (``field_generator.size_property_draw``), so not a function of sentences; a row records it like one.
@@ -1099,7 +1149,7 @@ HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: Held back whole and laid over the novel split's instructions at this rate, on top of their held-back channel or pair,
 #: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
 HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1, "value_repairs": 0.1,
-                                        "continued_steps": 0.5, "pasted_tables": 0.05}
+                                        "continued_steps": 0.5, "pasted_tables": 0.05, "anchor_first": 0.5}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))

@@ -793,6 +793,111 @@ def resolve_false_starts(pieces: list[Piece], changes: list[Change]) -> list[Pie
     return out
 
 
+# --- word order -----------------------------------------------------------------------------------------------
+#: What leads an anchor said before the step counted from it ("from the previous stud, two to the right").
+_ANCHOR_LEADS: tuple[tuple[str, ...], ...] = (("starting", "from"), ("starting", "at"), ("counting", "from"),
+                                              ("start", "from"), ("start", "at"), ("from",))
+#: Words that point an anchor back at the last stud used ("the previous stud", "that one", "the last one").
+_BACK_ANCHOR_WORDS = frozenset({"previous", "prev", "last", "that", "same"})
+_STUD_NOUNS = frozenset({"stud", "studs", "post", "one"})
+_STEP_COUNTS = frozenset({*(w for w, d in DIGIT_WORDS.items() if d != "0"), "ten", "eleven", "twelve",
+                          *(str(n) for n in range(1, 13))})
+#: Words between a step's count and its side ("two studs over to the right", "three more left").
+_STEP_MIDDLE = frozenset({"stud", "studs", "more", "over", "to", "the", "further", "farther", "places", "along"})
+#: Words after a side that make it something else than a step's side ("right of", "left stack", "right line").
+_NOT_A_STEP_SIDE = frozenset({"of", "from", "stack", "pile", "side", "end", "line", "edge", "hand"})
+
+
+#: Words after which an anchor with no lead is inside another phrase ("on the last stud, two more right").
+_INSIDE_A_PHRASE = frozenset({"of", "from", "at", "on", "to", "onto", "the", "a", "that", "this", "by", "beside", "past",
+                              "as", "like", "than"})
+
+
+#: Words that may stand between an anchor's determiner and its noun ("the fourth stud", "the far right one").
+_ANCHOR_MODIFIERS = frozenset({*_BACK_ANCHOR_WORDS, "far", "very", "left", "right", "leftmost", "rightmost", "middle",
+                               "end", "first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth",
+                               "ninth", "tenth", "eleventh", "twelfth"})
+
+
+def _stud_anchor(pieces: Sequence[Piece], j: int) -> tuple[int, bool]:
+    """The end of a stud anchor that starts at ``j`` ("the previous stud", "that one", "the fourth stud", "stud
+    500104", "500104 stud") and whether it points back at the last stud used; (``j``, False) where none starts there."""
+    low = [p.word.lower() for p in pieces[j:j + 6]]
+    k = 1 if low[:1] in (["the"], ["that"], ["this"]) else 0
+    if low[k:k + 1] == ["stud"] and k + 1 < len(low) and ID_PATTERN.match(low[k + 1]):
+        return j + k + 2, False
+    if k < len(low) and ID_PATTERN.match(low[k]):
+        return j + k + 1 + (low[k + 1:k + 2] in (["stud"], ["post"])), False
+    back, mods, ordinal = low[:1] == ["that"], 0, False
+    while k < len(low) and mods < 3 and (low[k] in _ANCHOR_MODIFIERS or _ORDINAL.match(low[k])):
+        back, ordinal = back or low[k] in _BACK_ANCHOR_WORDS, ordinal or bool(_ORDINAL.match(low[k]))
+        k, mods = k + 1, mods + 1
+    noun = k < len(low) and low[k] in _STUD_NOUNS and (mods or low[0] == "that")
+    end = k + noun
+    counted = _counted_from(pieces, j + end)  # "the fourth (stud) from the right end", "the stud in the middle"
+    if noun or (ordinal and counted):
+        return j + end + counted, back
+    if low[k:k + 1] == ["stud"] and tuple(low[k + 1:k + 4]) == ("in", "the", "middle"):
+        return j + k + 4, False
+    return j, False
+
+
+def _counted_from(pieces: Sequence[Piece], k: int) -> int:
+    """The length of "from the right (end)" or "from left" at ``k`` (an ordinal's side), 0 where none."""
+    low = [p.word.lower() for p in pieces[k:k + 4]]
+    n = 1 + (low[1:2] == ["the"]) if low[:1] == ["from"] else 0
+    if not n or low[n:n + 1] not in (["left"], ["right"]):
+        return 0
+    return n + 1 + (low[n + 1:n + 2] == ["end"])
+
+
+def _step_after(pieces: Sequence[Piece], k: int) -> int:
+    """The end of a step counted from an anchor that starts at ``k`` ("two studs to the right", "go three more left",
+    "one over"): a count, a few linking words and a side not followed by what makes it another side; ``k`` where none."""
+    c = k
+    while c < len(pieces) and pieces[c].word.lower() in ("go", "then", "move", "and"):
+        c += 1
+    if c >= len(pieces) or pieces[c].word.lower() not in _STEP_COUNTS:
+        return k
+    e = c + 1
+    while e < len(pieces) and e <= c + 4 and pieces[e].word.lower() in _STEP_MIDDLE:
+        e += 1
+    if e >= len(pieces) or pieces[e].word.lower() not in ("left", "right"):
+        return k
+    if e + 1 < len(pieces) and pieces[e + 1].word.lower() in _NOT_A_STEP_SIDE:
+        return k
+    return e + 1
+
+
+def anchor_last(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A stud counted from an anchor said first, as verb-final languages put it and people thinking aloud do ("from
+    the previous stud, two studs to the right", "starting at 500104 go three right", Hindi "pichhle stud se do stud
+    right" once the code-switch lexicon has read it), read in the order the corpus says it: "two studs to the right
+    of the previous stud". Without a lead ("from"), only an anchor that points back is one ("the last stud six stud
+    right"): a bare id before a count is more often the end of another field."""
+    out: list[Piece] = []
+    i = 0
+    while i < len(pieces):
+        lead = next((len(w) for w in _ANCHOR_LEADS
+                     if tuple(p.word.lower() for p in pieces[i:i + len(w)]) == w), 0)
+        a_end, back = _stud_anchor(pieces, i + lead)
+        begins = a_end > i + lead and (lead or back) and not (lead == 0 and out and out[-1].word.lower() in
+                                                                _INSIDE_A_PHRASE)
+        s_end = _step_after(pieces, a_end) if begins else a_end
+        if not begins or s_end == a_end:
+            out.append(pieces[i])
+            i += 1
+            continue
+        count = next(k for k in range(a_end, s_end) if pieces[k].word.lower() in _STEP_COUNTS)
+        step, anchor = pieces[count:s_end], pieces[i + lead:a_end]
+        read = [*step, Piece("of", step[-1].said, role="O"), *anchor]
+        changes.append(Change("anchor first", " ".join(p.word for p in pieces[i:s_end]),
+                              " ".join(p.word for p in read)))
+        out += read
+        i = s_end
+    return out
+
+
 #: Values a worker takes back by saying another of the same kind: an id, an ordinal, a side, a row.
 _SIDE_VALUES = frozenset({"left", "right"})
 _ROW_VALUES = frozenset({"top", "bottom"})
@@ -976,7 +1081,7 @@ def read_tables(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 
 #: The front end's steps, in order.
 STEPS: tuple[Step, ...] = (read_tables, split_fields, read_offsets, translate_code_switch, expand_shorthand, drop_fillers, read_ids,
-                           resolve_value_repairs, resolve_false_starts, metric_sizes, singular_sizes)
+                           resolve_value_repairs, resolve_false_starts, anchor_last, metric_sizes, singular_sizes)
 
 
 #: Written labels that only introduce the number after them ("stud no. 500104"); their full stop is what tells them

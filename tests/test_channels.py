@@ -329,6 +329,16 @@ def test_an_anchor_said_first_is_read_back_as_the_same_command(seed, anchor, stu
     assert outcome["stud_id"] == stud, text
 
 
+@pytest.mark.parametrize("seed", range(30))
+def test_chat_messages_are_read_back_as_the_same_command(seed):
+    sentence = _phrase("grab the full/dim sheet from the left/Dw_loc1 pile and stand it on 500108/ID_stud with its "
+                       "edge on the centre/Vr_md line/Vr_md")
+    out = C.chat_messages(Chooser(random.Random(seed)), [sentence])
+    text, outcome = _read_outcome(out)
+    assert "\n" in text and ":" in text
+    assert outcome == {"drywall_id": "500320", "stud_id": "500108", "placement": "vertical_middle", "refusal": None}, text
+
+
 @pytest.mark.parametrize("seed", range(20))
 def test_a_pasted_table_is_read_back_as_the_same_command(seed):
     sentence = _phrase("grab the full/dim sheet from the left/Dw_loc1 pile and put it two/St_loc1 studs to/St_loc1 "

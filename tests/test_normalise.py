@@ -180,11 +180,13 @@ def test_no_code_switch_form_is_a_word_of_the_training_corpus():
     for row in FG.field_split("train"):
         for words in (tokenize(row["text"]), row["words"]):
             folded = [N.fold(w) for w in words]
+            written = [N.as_written(w) for w in words]
             for i in range(len(folded)):
                 if folded[i] in N.DIGITS_ONLY_IN_A_RUN:  # "um" is a filler there, and the front end reads it so
                     assert not N._in_foreign_number(folded, i), (row["id"], folded[i])
                     continue
-                assert not any(tuple(folded[i:i + n]) in table for n in range(1, longest + 1)), (row["id"], folded[i])
+                assert not any(tuple(f[i:i + n]) in table for n in range(1, longest + 1) for f in (folded, written)), \
+                    (row["id"], folded[i])
 
 
 @pytest.mark.parametrize("said, read", [
@@ -212,6 +214,19 @@ def test_a_bad_lexicon_line_is_named(tmp_path):
         N._code_switch_table(bad)
 
 
+
+def test_a_language_whose_accents_tell_words_apart_is_matched_only_as_written(tmp_path):
+    lexicon = tmp_path / "lexicon.tsv"
+    lexicon.write_text("năm\tfive\tvi\nnằm\tflat\tvi\nbảy\tseven\tvi\npila\tpile\tes\n", encoding="utf-8")
+    N._code_switch_table(lexicon)  # "năm" and "nằm" fold alike and read differently: no conflict
+
+    def read(text):
+        return " ".join(p.word for p in N.translate_code_switch([N.Piece(w, (k,)) for k, w in enumerate(text.split())],
+                                                                [], lexicon))
+    assert read("NĂM nằm bảy Pila píla") == "five flat seven pile pile"
+    assert read("nam bay") == "nam bay"  # without its accents a Vietnamese form is another word ("bay" in English)
+
+
 _WORDS = st.sampled_from(["put", "the", "2x8s", "on", "five", "oh", "one", "double", "hundred", "-", "|", "no", "um",
                           "CL", "r", "L", "by-", "the-", "500", "104", "#500104", "like,", "stud", "eight", "twenty",
                           "sorry", "I", "mean", "4x", "x", "you", "know", "", "!", "->", "la", "de", "izquierda",
@@ -225,8 +240,8 @@ def test_every_word_read_comes_from_the_workers_words_in_order(words):
     assert n.said == tuple(tokenize(" ".join(words)))
     assert len(n.words) == len(n.sources)
     # in order: a word read comes from no earlier words than the one before it (the words of a phrase read as a
-    # phrase, "la de" -> "the one", all come from the whole phrase; only ``anchor_last`` moves words, an anchor said
-    # before its step, which these words never make)
+    # phrase, "la de" -> "the one", all come from the whole phrase; only ``anchor_last`` and ``read_star_corrections``
+    # move words, an anchor said before its step and a starred value, which these words never make)
     assert all(0 <= i < len(n.said) for sources in n.sources for i in sources)
     assert all(list(s) == sorted(s) for s in n.sources)
     assert all(a[0] <= b[0] and a[-1] <= b[-1] for a, b in zip(n.sources, n.sources[1:]) if a and b)
@@ -337,3 +352,36 @@ def test_an_anchor_moved_after_its_step_keeps_its_words_tags():
     assert n.tags_of_words(said_tags) == ["St_loc1", "O", "St_loc1", "St_loc1", "St_loc1", "O", "O", "St_loc2", "O"]
     assert n.tags_of_said(n.tags_of_words(said_tags)) == said_tags  # "from" was dropped: O
     assert [c.kind for c in n.changes] == ["anchor first"]
+
+
+@pytest.mark.parametrize("said, read", [
+    ("[07:09] Kev: full sheet off the left\n[07:10] Kev: stand it on 500104", "full sheet off the left stand it on 500104"),
+    ("12/07/2026, 07:09:11 - Sam Ortiz: grab the 2x8", "grab the 2x8"),
+    ("Dave (12:30): grab the 2x8", "grab the 2x8"),
+    ("at 12:30 put it on 500104", "at 12 30 put it on 500104"),  # a time inside the instruction stays
+    ("12:30 Put the 2x8 on 500104", "12 30 Put the 2x8 on 500104"),  # no colon after a name: no header
+    ("Note: put the 2x8 on 500104", "Note put the 2x8 on 500104"),  # a label with no time: no header
+])
+def test_a_chat_messages_header_is_dropped(said, read):
+    assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
+    ("stand it on the centre line of 500104\n*500105", "stand it on the centre line of 500105"),
+    ("the left pile, fourth stud *third", "the left pile third stud"),
+    ("grab a 2x8 *4x8 from the middle", "grab a 4x8 from the middle"),
+    ("*500105 is the stud", "500105 is the stud"),  # nothing of its kind before it: the star goes
+])
+def test_a_starred_value_takes_the_place_of_the_last_of_its_kind(said, read):
+    assert N.normalise_text(said) == read
+
+
+def test_a_phrase_of_the_lexicon_never_runs_across_a_comma(tmp_path):
+    lexicon = tmp_path / "lexicon.tsv"
+    lexicon.write_text("hàng trên cùng\ttopmost row\tvi\nhàng trên\ttop row\tvi\ncùng stud\tthe same stud\tvi\n",
+                       encoding="utf-8")
+
+    def read(text):
+        return " ".join(p.word for p in N.translate_code_switch(N._pieces(text)[1], [], lexicon))
+    assert read("hàng trên cùng") == "topmost row"
+    assert read("hàng trên, cùng stud") == "top row the same stud"

@@ -29,11 +29,14 @@ keeping the meaning and carrying every word's tag along:
   unsaid ("two studs further right", "one more to the left", "three over to the right").
 - ``pasted_tables``: the instruction pasted from a spreadsheet, a header line of labels and a line of values under
   it ("line;panel;stud;edge" / "3;500320;500104;centre line").
+- ``chat_messages``: the instruction sent as chat messages under headers with the time and the sender ("[07:09]
+  Kev: ..."), now and then a value corrected with a star in a message of its own ("*500105");
 - ``anchor_first``: a stud counted from an anchor said before the step, as verb-final languages order it ("from the
   previous stud, two to the right", "starting at 500104 go three to the left").
 
 The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides, the code switch, the glued
-fields, the values taken back, the pasted tables and an anchor said first into the corpus's written forms; the tagger must learn the
+fields, the values taken back, the pasted tables, an anchor said first and chat messages' headers and starred
+corrections into the corpus's written forms; the tagger must learn the
 others, and the IM reads a step that goes on from the last stud (``im.stud.stud_going_on``). Whole channels and pairs of channels are held back from the
 training splits (``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction
 said in a way the tagger never met (first sight).
@@ -939,6 +942,59 @@ def anchor_first(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
+# --- chat messages -----------------------------------------------------------------------------------------
+#: Who sends a chat message, and the forms of a message's header ({t}: the time, {n}: the sender, {d}: the date).
+CHAT_SENDERS = ("Kev", "Dave", "Ana", "Marco", "Li", "Sam Ortiz", "Priya", "Tomek", "J.B.")
+CHAT_HEADERS = ("[{t}] {n}:", "{t} - {n}:", "{n} ({t}):", "[{d}, {t}] {n}:", "{d} {t} - {n}:", "[{t}] {n}:")
+
+
+def _header(form: str, sender: str, minute: int, date: str) -> Phrase:
+    clock = f"{minute // 60:02d}:{minute % 60:02d}"
+    return [Token(w, "O", "O") for w in form.format(t=clock, n=sender, d=date).split()]
+
+
+def chat_messages(ch: Chooser, sentences: Sentences) -> Sentences:
+    """The instruction sent as chat messages, each on a line of its own under a header with the time and the sender
+    ("[07:09] Kev: full sheet off the left" / "[07:10] Kev: stand it on 500104"); now and then a value sent wrongly and
+    corrected in a message of its own with a star, as chat users correct a word ("*500105"). The headers and the
+    value taken back are ``O``, the starred value keeps its tag. The front end drops the headers
+    (``nlu.normalise.drop_chat_stamps``) and puts a starred value in place of the other (``read_star_corrections``)."""
+    rng = ch.rng
+    words = [t for s in sentences for t in s]
+    if sum(t.is_word for t in words) < 4 or any("\n" in t.word for t in words):  # not a table pasted in already
+        return sentences
+    messages: list[Phrase] = [list(s) for s in sentences if any(t.is_word for t in s)]
+    if len(messages) == 1:
+        cut = rng.choice([k for k in range(2, len(words) - 1) if words[k - 1].is_word or not words[k].is_word] or [2])
+        messages = [words[:cut], words[cut:]]
+    from drywall_lab.nlu.normalise import _starred_kind
+
+    starred: Phrase = []
+    said = [(m, i, _starred_kind(tok.word)) for m, message in enumerate(messages) for i, tok in enumerate(message)
+            if tok.is_word]
+    last_of_kind = {kind: (m, i) for m, i, kind in said if kind}  # a star corrects the last value of its kind
+    spots = [(m, i, other) for m, message in enumerate(messages) for i, tok in enumerate(message)
+             if tok.is_word and tok.tag != "O" and last_of_kind.get(_starred_kind(tok.word)) == (m, i)
+             and (other := _taken_back(rng, tok)) is not None]
+    if spots and ch.chance(0.4):
+        m, i, other = rng.choice(spots)
+        meant = messages[m][i]
+        messages[m][i] = Token(other, "O", "O")
+        starred = [Token("*" + meant.word, meant.tag, meant.coref)]
+    sender, form = rng.choice(CHAT_SENDERS), rng.choice(CHAT_HEADERS)
+    minute, date = rng.randint(6 * 60, 17 * 60), f"{rng.randint(1, 28):02d}/{rng.randint(1, 12):02d}"
+    lines = messages + ([starred] if starred else [])
+    out: Phrase = []
+    for k, line in enumerate(lines):
+        minute += rng.choice((0, 0, 1))
+        body = [t for t in line if t.is_word or out]
+        last = max(j for j, t in enumerate(body) if t.is_word)
+        if k < len(lines) - 1:
+            body[last] = Token(body[last].word + "\n", body[last].tag, body[last].coref)
+        out += _header(form, sender, minute, date) + body
+    return [out]
+
+
 def _labels_first(sentence: Phrase, glue: str) -> Phrase:
     """A one-word value that says which, typed after its field's label ("same size" -> "size=same", "top row" ->
     "row=top", "the left pile" -> "pile=left"; the front end's ``split_fields`` puts the words back in order)."""
@@ -1127,6 +1183,7 @@ CHANNELS: dict[str, Channel] = {
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
     "code_switch": code_switch, "openers": openers, "glued_fields": glued_fields, "value_repairs": value_repairs,
     "continued_steps": continued_steps, "pasted_tables": pasted_tables, "anchor_first": anchor_first,
+    "chat_messages": chat_messages,
 }
 #: A row whose target is said by a property ("the narrow one") instead of its size, in every split: drawn where the
 #: target is said (``field_generator.size_property_draw``), so not a function of sentences; a row records it like one.
@@ -1149,7 +1206,8 @@ HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: Held back whole and laid over the novel split's instructions at this rate, on top of their held-back channel or pair,
 #: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
 HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1, "value_repairs": 0.1,
-                                        "continued_steps": 0.5, "pasted_tables": 0.05, "anchor_first": 0.5}
+                                        "continued_steps": 0.5, "pasted_tables": 0.05, "anchor_first": 0.5,
+                                        "chat_messages": 0.08}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))

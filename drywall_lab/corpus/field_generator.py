@@ -1084,11 +1084,11 @@ READ_UNTAGGED = frozenset({"left", "line", "edge", "side", "along", "across", "o
 def _read_by_front_end() -> frozenset[str]:
     """The one-word forms the front end reads as other words (the code-switch and shorthand lexicons): a typo that
     lands on one ("come" -> "comme", French for "as") would say another word."""
-    from drywall_lab.nlu.normalise import fold, read_code_switch, read_lexicon
+    from drywall_lab.nlu.normalise import _form_key, read_code_switch, read_lexicon
 
     exact, any_case = read_lexicon()
-    return frozenset({fold(form) for form, _, _ in read_code_switch() if " " not in form} | set(any_case)
-                     | {form.lower() for form in exact})
+    return frozenset({_form_key(form, language)[0] for form, _, language in read_code_switch() if " " not in form}
+                     | set(any_case) | {form.lower() for form in exact})
 
 
 def _misspelt(rng: random.Random, word: str) -> str:

@@ -89,6 +89,8 @@ class Piece:
     #: (line, cell) of the worker's text it stands in: a new line, a tab, or a comma or semicolon after a word start
     #: another cell (a table pasted from a spreadsheet: ``read_tables``)
     cell: tuple[int, int] = (0, 0)
+    #: a colon after it, as typed ("Kev:" in a chat message's header)
+    labelled: bool = False
 
 
 @dataclass(frozen=True)
@@ -185,15 +187,34 @@ def read_code_switch(path: Path | str = CODE_SWITCH_PATH) -> tuple[tuple[str, st
     return tuple(entries)
 
 
+#: Languages whose accents tell words apart (Vietnamese tones: "năm" five, "nằm" lying, "bảy" seven, "bay" to fly):
+#: their forms are matched only as written with their accents, never folded.
+ACCENTS_TELL_APART = frozenset({"vi"})
+
+
+def as_written(word: str) -> str:
+    """A word as a form of a language whose accents tell words apart is matched: lower case, accents kept (composed)."""
+    return unicodedata.normalize("NFC", word.lower())
+
+
 @lru_cache(maxsize=4)
 def _code_switch_table(path: Path | str = CODE_SWITCH_PATH) -> dict[tuple[str, ...], tuple[str, ...]]:
+    """Each form's key (its words folded, or as written in a language whose accents tell words apart) -> its reading.
+    A folded key and a key as written never meet: a folded key holds no accents, and a form as written that has none
+    is folded like every other."""
     table: dict[tuple[str, ...], tuple[str, ...]] = {}
-    for form, reading, _ in read_code_switch(path):
-        key = tuple(fold(w) for w in form.split())
+    for form, reading, language in read_code_switch(path):
+        key = _form_key(form, language)
         if table.get(key, tuple(reading.split())) != tuple(reading.split()):
             raise ValueError(f"{path}: {form!r} is read as {' '.join(table[key])!r} and as {reading!r}")
         table[key] = tuple(reading.split())
     return table
+
+
+def _form_key(form: str, language: str) -> tuple[str, ...]:
+    if language in ACCENTS_TELL_APART and any(fold(w) != w.lower() for w in form.split()):
+        return tuple(as_written(w) for w in form.split())
+    return tuple(fold(w) for w in form.split())
 
 
 # --- steps: each takes and returns a list of pieces, and says what it changed ------------------------------
@@ -345,21 +366,28 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
 def translate_code_switch(pieces: list[Piece], changes: list[Change],
                           lexicon: Path | str = CODE_SWITCH_PATH) -> list[Piece]:
     """Words and phrases of another language mixed into an instruction read in English from the code-switch lexicon,
-    the longest form first ("la pila de la izquierda" -> "the pile on the left", "cuatro por ocho" -> "four by eight");
-    a filler ("pues") is dropped."""
+    the longest form first ("la pila de la izquierda" -> "the pile on the left", "cuatro por ocho" -> "four by eight"),
+    never across a comma; a filler ("pues") is dropped."""
     table = _code_switch_table(lexicon)
     longest = max(map(len, table))
     folded = [fold(p.word) for p in pieces]
+    written = [as_written(p.word) for p in pieces]
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
-        n = next((n for n in range(min(longest, len(pieces) - i), 0, -1) if tuple(folded[i:i + n]) in table
-                  and (n > 1 or folded[i] not in DIGITS_ONLY_IN_A_RUN or _in_foreign_number(folded, i, lexicon))), 0)
+        n, key = 0, ()
+        for n in range(min(longest, len(pieces) - i), 0, -1):
+            if any(p.paused for p in pieces[i:i + n - 1]):  # a phrase never runs across a comma
+                continue
+            key = next((k for k in (tuple(written[i:i + n]), tuple(folded[i:i + n])) if k in table), ())
+            if key and (n > 1 or folded[i] not in DIGITS_ONLY_IN_A_RUN or _in_foreign_number(folded, i, lexicon)):
+                break
+            n, key = 0, ()
         if not n:
             out.append(pieces[i])
             i += 1
             continue
-        span, reading = pieces[i:i + n], table[tuple(folded[i:i + n])]
+        span, reading = pieces[i:i + n], table[key]
         changes.append(Change("code switch", " ".join(p.word for p in span), " ".join(reading)))
         out += _read_as(reading, tuple(k for p in span for k in p.said), span[-1])
         i += n
@@ -793,6 +821,79 @@ def resolve_false_starts(pieces: list[Piece], changes: list[Change]) -> list[Pie
     return out
 
 
+# --- chat messages ---------------------------------------------------------------------------------------------
+_CLOCK = re.compile(r"^\d{1,2}[:.]\d{2}(?:[:.]\d{2})?(?:am|pm)?$", re.I)
+_DATE = re.compile(r"^\d{1,4}[/.-]\d{1,2}(?:[/.-]\d{2,4})?$")
+_NAME = re.compile(r"^[^\W\d_][\w.'’-]*$")
+
+
+def _stamp_at(pieces: Sequence[Piece], k: int) -> int:
+    """The length of a chat message's header at ``k`` ("[07:09] Kev:", "12/07/2026, 07:09:11 - Kev Smith:", "Kev
+    (07:09):"): a clock time, a date or not, a name of one to three words, the header's colon last; 0 where none."""
+    low = [p.word.lower() for p in pieces[k:k + 8]]
+    n, clock = 0, False
+    while n < len(low) and n < 4 and (_CLOCK.match(low[n]) or _DATE.match(low[n]) or low[n] in ("am", "pm", "-")):
+        clock, n = clock or bool(_CLOCK.match(low[n])), n + 1
+        if pieces[k + n - 1].labelled:  # "07:09:" with no name
+            return n if clock else 0
+    names = 0
+    while n < len(low) and names < 3 and _NAME.match(pieces[k + n].word):
+        n, names = n + 1, names + 1
+        if pieces[k + n - 1].labelled:
+            return n if clock and names else 0
+    if not clock and names and n < len(low) and _CLOCK.match(low[n]) and pieces[k + n].labelled:  # "Kev (07:09):"
+        return n + 1
+    return 0
+
+
+def drop_chat_stamps(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """The header of each message of a chat copied in ("[07:09] Kev:", "Kev (07:09):"), at the start of a line, is
+    dropped: a time, a date and a sender's name say nothing of the command (a time said inside an instruction, "at
+    12:30", stays)."""
+    out: list[Piece] = []
+    i = 0
+    while i < len(pieces):
+        starts_line = i == 0 or pieces[i].cell[0] != pieces[i - 1].cell[0]
+        n = _stamp_at(pieces, i) if starts_line else 0
+        if n:
+            changes.append(Change("chat header", " ".join(p.word for p in pieces[i:i + n]), ""))
+            i += n
+            continue
+        out.append(pieces[i])
+        i += 1
+    return out
+
+
+_TYPED_SIZE = re.compile(r"^\d+(?:'|ft)?x\d+(?:'|ft)?$", re.I)
+
+
+def _starred_kind(word: str) -> str | None:
+    """The kind of value a starred correction may take the place of: ``_value_kind``'s, or a size typed "4x8"."""
+    return _value_kind(word) or ("size" if _TYPED_SIZE.match(word) else None)
+
+
+def read_star_corrections(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A value typed with a star after a message ("*500105", "*left"), as chat users correct a word they sent, takes
+    the place of the last value of its kind before it (an id, an ordinal, a side, a row): the final intention counts.
+    With none before it, the value stays where it is, its star dropped."""
+    out: list[Piece] = []
+    for p in pieces:
+        value = p.word.strip("*")
+        if value == p.word or not value:
+            out.append(p)
+            continue
+        kind = _starred_kind(value)
+        old = next((k for k in range(len(out) - 1, -1, -1) if kind and _starred_kind(out[k].word) == kind), None)
+        read = replace(p, word=value)
+        if old is None:
+            changes.append(Change("star correction", p.word, value))
+            out.append(read)
+        else:
+            changes.append(Change("star correction", f"{out[old].word} ... {p.word}", value))
+            out[old] = replace(read, paused=out[old].paused, broken_off=out[old].broken_off)
+    return out
+
+
 # --- word order -----------------------------------------------------------------------------------------------
 #: What leads an anchor said before the step counted from it ("from the previous stud, two to the right").
 _ANCHOR_LEADS: tuple[tuple[str, ...], ...] = (("starting", "from"), ("starting", "at"), ("counting", "from"),
@@ -1080,8 +1181,9 @@ def read_tables(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 
 
 #: The front end's steps, in order.
-STEPS: tuple[Step, ...] = (read_tables, split_fields, read_offsets, translate_code_switch, expand_shorthand, drop_fillers, read_ids,
-                           resolve_value_repairs, resolve_false_starts, anchor_last, metric_sizes, singular_sizes)
+STEPS: tuple[Step, ...] = (drop_chat_stamps, read_tables, split_fields, read_offsets, translate_code_switch, expand_shorthand,
+                           drop_fillers, read_ids, read_star_corrections, resolve_value_repairs, resolve_false_starts,
+                           anchor_last, metric_sizes, singular_sizes)
 
 
 #: Written labels that only introduce the number after them ("stud no. 500104"); their full stop is what tells them
@@ -1105,7 +1207,8 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
                     broken_off = bool(_BROKEN_OFF.search(raw))
                     read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word
                     paused = bool(_PAUSE.search(raw))
-                    pieces.append(Piece(read, (len(said),), broken_off, paused=paused, cell=(line, cell)))
+                    pieces.append(Piece(read, (len(said),), broken_off, paused=paused, cell=(line, cell),
+                                        labelled=raw.endswith(":")))
                     said.append(word)
                 cell += bool(_PAUSE.search(raw))
     return said, pieces

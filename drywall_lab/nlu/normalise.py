@@ -211,6 +211,16 @@ def _code_switch_table(path: Path | str = CODE_SWITCH_PATH) -> dict[tuple[str, .
     return table
 
 
+@lru_cache(maxsize=4)
+def _lengths_by_first_word(path: Path | str = CODE_SWITCH_PATH) -> dict[str, tuple[int, ...]]:
+    """Each first word of a key of ``_code_switch_table`` -> the lengths of its keys, the longest first: a word that
+    starts no form is passed over in one look-up."""
+    out: dict[str, set[int]] = {}
+    for key in _code_switch_table(path):
+        out.setdefault(key[0], set()).add(len(key))
+    return {word: tuple(sorted(lengths, reverse=True)) for word, lengths in out.items()}
+
+
 def _form_key(form: str, language: str) -> tuple[str, ...]:
     if language in ACCENTS_TELL_APART and any(fold(w) != w.lower() for w in form.split()):
         return tuple(as_written(w) for w in form.split())
@@ -292,8 +302,13 @@ def read_offsets(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     sign, with or without "stud" ("prev +2", "prev + 2", "last -1", "prev stud +5"), an id only from "+N" ("500104 +2": "500321 - 1" is more likely a dash
     between fields); a sign with no anchor ("+2") is left as written (counted from what?)."""
     out: list[Piece] = []
+    signed = [("+" in p.word or "-" in p.word) for p in pieces]
     i = 0
     while i < len(pieces):
+        if not any(signed[i:i + 4]):  # no sign in reach: no sum starts here
+            out.append(pieces[i])
+            i += 1
+            continue
         match, n = None, 0
         for n in (1, 2, 3, 4):  # "prev+2"; "prev" "+2"; "prev" "+" "2"; "prev" "stud" "+" "2"
             match = _OFFSET.match("".join(p.word for p in pieces[i:i + n])) if i + n <= len(pieces) else None
@@ -368,22 +383,22 @@ def translate_code_switch(pieces: list[Piece], changes: list[Change],
     """Words and phrases of another language mixed into an instruction read in English from the code-switch lexicon,
     the longest form first ("la pila de la izquierda" -> "the pile on the left", "cuatro por ocho" -> "four by eight"),
     never across a comma; a filler ("pues") is dropped."""
-    table = _code_switch_table(lexicon)
-    longest = max(map(len, table))
+    table, firsts = _code_switch_table(lexicon), _lengths_by_first_word(lexicon)
     folded = [fold(p.word) for p in pieces]
     written = [as_written(p.word) for p in pieces]
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
         n, key = 0, ()
-        for n in range(min(longest, len(pieces) - i), 0, -1):
+        lengths = sorted({*firsts.get(folded[i], ()), *firsts.get(written[i], ())}, reverse=True)
+        for n in (n for n in lengths if n <= len(pieces) - i):
             if any(p.paused for p in pieces[i:i + n - 1]):  # a phrase never runs across a comma
                 continue
             key = next((k for k in (tuple(written[i:i + n]), tuple(folded[i:i + n])) if k in table), ())
             if key and (n > 1 or folded[i] not in DIGITS_ONLY_IN_A_RUN or _in_foreign_number(folded, i, lexicon)):
                 break
             n, key = 0, ()
-        if not n:
+        if not key:
             out.append(pieces[i])
             i += 1
             continue
@@ -920,6 +935,10 @@ _ANCHOR_MODIFIERS = frozenset({*_BACK_ANCHOR_WORDS, "far", "very", "left", "righ
                                "ninth", "tenth", "eleventh", "twelfth"})
 
 
+#: The words an anchor said first may start with: a lead's first word, a determiner, a word that points back.
+_ANCHOR_STARTS = frozenset({w[0] for w in _ANCHOR_LEADS} | {"the", "that", "this"} | _BACK_ANCHOR_WORDS)
+
+
 def _stud_anchor(pieces: Sequence[Piece], j: int) -> tuple[int, bool]:
     """The end of a stud anchor that starts at ``j`` ("the previous stud", "that one", "the fourth stud", "stud
     500104", "500104 stud") and whether it points back at the last stud used; (``j``, False) where none starts there."""
@@ -977,10 +996,14 @@ def anchor_last(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     of the previous stud". Without a lead ("from"), only an anchor that points back is one ("the last stud six stud
     right"): a bare id before a count is more often the end of another field."""
     out: list[Piece] = []
+    low = [p.word.lower() for p in pieces]
     i = 0
     while i < len(pieces):
-        lead = next((len(w) for w in _ANCHOR_LEADS
-                     if tuple(p.word.lower() for p in pieces[i:i + len(w)]) == w), 0)
+        if low[i] not in _ANCHOR_STARTS:  # most words start nothing here
+            out.append(pieces[i])
+            i += 1
+            continue
+        lead = next((len(w) for w in _ANCHOR_LEADS if tuple(low[i:i + len(w)]) == w), 0)
         a_end, back = _stud_anchor(pieces, i + lead)
         begins = a_end > i + lead and (lead or back) and not (lead == 0 and out and out[-1].word.lower() in
                                                                 _INSIDE_A_PHRASE)

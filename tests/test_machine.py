@@ -10,9 +10,11 @@ import datetime as dt
 import os
 import re
 import statistics
+import time
 from pathlib import Path
 from types import ModuleType
 
+import numpy as np
 import pandas as pd
 import pytest
 from conftest import load_benchmark
@@ -180,6 +182,24 @@ def test_latency_reports_the_median_of_the_runs() -> None:
     decided = pd.concat([medians, pd.DataFrame({"single_p50_ms": [4.5]}, index=["lstm_decided"])])
     assert latency.target_lines(decided)[-1] == ("target decision layer at most 2x the tagger's predict: MISSED "
                                                  "(2.25x, single-instruction p50, median over the runs)")
+
+
+def test_latency_judges_the_speed_targets_on_pairs_timed_alternately() -> None:
+    latency = load_script("latency")
+    runs = [{"paired": {"lstm_decided/lstm": r}} for r in (1.4, 1.7, 1.45)]
+    assert latency.paired_target_lines(runs) == [
+        "target decision layer at most 1.5x the tagger's predict, timed alternately: met (1.45x, median over the runs; "
+        "1.40, 1.70, 1.45)"]
+    assert latency.PAIRED == (("lstm", "lstm_decided"),)
+
+    class Clock:
+        def __init__(self, seconds):
+            self.seconds = seconds
+
+        def predict(self, sentences):
+            time.sleep(self.seconds)
+    times = latency.time_paired(Clock(0.001), Clock(0.003), [["a"], ["b"], ["c"]], passes=2)
+    assert times.shape == (2, 2, 3) and np.all(times[1] > times[0])
 
 
 def test_placement_compares_the_physics_of_the_runs() -> None:

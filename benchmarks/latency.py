@@ -230,11 +230,6 @@ def paired_target_lines(runs: list[dict]) -> list[str]:
     the machine's load between the passes)."""
     ratios = pd.DataFrame([r["paired"] for r in runs])
     lines = []
-    if "bert_base/lstm_read" in ratios:
-        speedup = float(ratios["bert_base/lstm_read"].median())
-        lines.append(f"target lstm_read at least {TARGET_SPEEDUP_OVER_BERT_BASE:g}x faster than bert_base, timed "
-                     f"alternately: {'met' if speedup >= TARGET_SPEEDUP_OVER_BERT_BASE else 'MISSED'} ({speedup:.1f}x, "
-                     f"median over the runs; {', '.join(f'{x:.1f}' for x in ratios['bert_base/lstm_read'])})")
     if "lstm_decided/lstm" in ratios:
         ratio = float(ratios["lstm_decided/lstm"].median())
         lines.append(f"target decision layer at most {TARGET_DECIDED_RATIO:g}x the tagger's predict, timed "

@@ -970,12 +970,10 @@ def chat_messages(ch: Chooser, sentences: Sentences) -> Sentences:
     from drywall_lab.nlu.normalise import _starred_kind
 
     starred: Phrase = []
-    said = [(m, i, _starred_kind(tok.word)) for m, message in enumerate(messages) for i, tok in enumerate(message)
-            if tok.is_word]
-    last_of_kind = {kind: (m, i) for m, i, kind in said if kind}  # a star corrects the last value of its kind
-    spots = [(m, i, other) for m, message in enumerate(messages) for i, tok in enumerate(message)
-             if tok.is_word and tok.tag != "O" and last_of_kind.get(_starred_kind(tok.word)) == (m, i)
-             and (other := _taken_back(rng, tok)) is not None]
+    last_of_kind = {kind: (m, i) for m, message in enumerate(messages) for i, tok in enumerate(message)
+                    if tok.is_word and (kind := _starred_kind(tok.word))}  # a star corrects the last of its kind
+    spots = [(m, i, other) for m, i in sorted(last_of_kind.values())
+             if messages[m][i].tag != "O" and (other := _taken_back(rng, messages[m][i])) is not None]
     if spots and ch.chance(0.4):
         m, i, other = rng.choice(spots)
         meant = messages[m][i]

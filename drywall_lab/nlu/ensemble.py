@@ -400,6 +400,11 @@ class CrfEnsembleTagger(Tagger):
     def predict_marginals(self, sentences: Sentences, batch_size: int = 64) -> list[np.ndarray]:
         return [c.marginals for c in self.predict_confidence(sentences, k=1, batch_size=batch_size)]
 
+    def _float64_batches(self, sentences: Sentences, batch_size: int):
+        """``_fast_batches`` as the CRF's NumPy recursions take them: (indices, float64 emissions, boolean mask)."""
+        for index, emissions, lengths in self._fast_batches(sentences, batch_size):
+            yield index, emissions.astype(np.float64), np.arange(emissions.shape[1])[None, :] < lengths[:, None]
+
     def predict_kbest(self, sentences: Sentences, k: int, batch_size: int = 64) -> list[KBest]:
         """The k best sequences of the averaged CRF with their log-probabilities, from the forward half alone
         (log Z; no marginals): the readings the decision weighs, a third cheaper than ``predict_confidence``."""
@@ -408,9 +413,7 @@ class CrfEnsembleTagger(Tagger):
         k = check_k(k)
         sentences = self._checked(sentences, "predict_kbest")
         out: list[KBest] = [[([], 0.0)] for _ in sentences]
-        for index, emissions, lengths in self._fast_batches(sentences, batch_size):
-            e = emissions.astype(np.float64)
-            mask = np.arange(e.shape[1])[None, :] < lengths[:, None]
+        for index, e, mask in self._float64_batches(sentences, batch_size):
             with torch.inference_mode():
                 kbest = _kbest(e, mask, *self._scores64, k, _log_partition(e, mask, *self._scores64))
             for row, i in enumerate(index):
@@ -424,9 +427,7 @@ class CrfEnsembleTagger(Tagger):
         k = check_k(k)
         sentences = self._checked(sentences, "predict_confidence")
         out = no_confidences(len(sentences), self.labels)
-        for index, emissions, lengths in self._fast_batches(sentences, batch_size):
-            e = emissions.astype(np.float64)
-            mask = np.arange(e.shape[1])[None, :] < lengths[:, None]
+        for index, e, mask in self._float64_batches(sentences, batch_size):
             with torch.inference_mode():  # the k best's many small torch.topk calls skip autograd's bookkeeping
                 marginals, log_z = _forward_backward(e, mask, *self._scores64)
                 kbest = _kbest(e, mask, *self._scores64, k, log_z)

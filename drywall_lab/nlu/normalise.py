@@ -389,19 +389,19 @@ def translate_code_switch(pieces: list[Piece], changes: list[Change],
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
-        n, key = 0, ()
-        lengths = sorted({*firsts.get(folded[i], ()), *firsts.get(written[i], ())}, reverse=True)
-        for n in (n for n in lengths if n <= len(pieces) - i):
-            if any(p.paused for p in pieces[i:i + n - 1]):  # a phrase never runs across a comma
+        key: tuple[str, ...] = ()
+        for n in sorted({*firsts.get(folded[i], ()), *firsts.get(written[i], ())}, reverse=True):
+            if n > len(pieces) - i or any(p.paused for p in pieces[i:i + n - 1]):  # never across a comma
                 continue
-            key = next((k for k in (tuple(written[i:i + n]), tuple(folded[i:i + n])) if k in table), ())
-            if key and (n > 1 or folded[i] not in DIGITS_ONLY_IN_A_RUN or _in_foreign_number(folded, i, lexicon)):
+            found = next((k for k in (tuple(written[i:i + n]), tuple(folded[i:i + n])) if k in table), ())
+            if found and (n > 1 or folded[i] not in DIGITS_ONLY_IN_A_RUN or _in_foreign_number(folded, i, lexicon)):
+                key = found
                 break
-            n, key = 0, ()
         if not key:
             out.append(pieces[i])
             i += 1
             continue
+        n = len(key)
         span, reading = pieces[i:i + n], table[key]
         changes.append(Change("code switch", " ".join(p.word for p in span), " ".join(reading)))
         out += _read_as(reading, tuple(k for p in span for k in p.said), span[-1])
@@ -898,7 +898,7 @@ def read_star_corrections(pieces: list[Piece], changes: list[Change]) -> list[Pi
             out.append(p)
             continue
         kind = _starred_kind(value)
-        old = next((k for k in range(len(out) - 1, -1, -1) if kind and _starred_kind(out[k].word) == kind), None)
+        old = next((k for k in range(len(out) - 1, -1, -1) if _starred_kind(out[k].word) == kind), None) if kind else None
         read = replace(p, word=value)
         if old is None:
             changes.append(Change("star correction", p.word, value))
@@ -930,9 +930,9 @@ _INSIDE_A_PHRASE = frozenset({"of", "from", "at", "on", "to", "onto", "the", "a"
 
 
 #: Words that may stand between an anchor's determiner and its noun ("the fourth stud", "the far right one").
+#: (ordinals, "fourth" or "4th", are matched by ``_ORDINAL``).
 _ANCHOR_MODIFIERS = frozenset({*_BACK_ANCHOR_WORDS, "far", "very", "left", "right", "leftmost", "rightmost", "middle",
-                               "end", "first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth",
-                               "ninth", "tenth", "eleventh", "twelfth"})
+                               "end"})
 
 
 #: The words an anchor said first may start with: a lead's first word, a determiner, a word that points back.

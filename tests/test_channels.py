@@ -288,10 +288,30 @@ def test_a_value_taken_back_leaves_the_meant_value_tagged_and_the_front_end_drop
                        "from/St_loc1 the/St_loc1 left/St_loc1")
     out = C.value_repairs(Chooser(random.Random(seed)), [sentence])[0]
     tagged = [(t.word, t.tag) for t in out if t.is_word and t.tag != "O"]
-    assert tagged == [(t.word, t.tag) for t in sentence if t.is_word and t.tag != "O"]  # the meant values, as tagged
+    assert sorted(tagged) == sorted((t.word, t.tag) for t in sentence if t.is_word and t.tag != "O")  # the meant values
+    # as tagged (a value taken back late is said again after the rest of its clause)
     assert len([t for t in out if t.is_word]) > len([t for t in sentence if t.is_word])  # something was taken back
-    text = " ".join(t.word for t in out).replace(" ,", ",")
+    text = " ".join(t.word for t in out).replace(" ,", ",").replace(" .", ".")
     assert normalise(text).words == normalise(" ".join(t.word for t in sentence if t.is_word)).words, text
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_a_value_taken_back_late_is_put_back_by_the_front_end(seed, monkeypatch):
+    """Taken back after a reason, or with the rest of its clause said before the cue ("the top row from the first
+    stud, no. bottom row"): the front end reads the instruction as it was meant."""
+    from drywall_lab.nlu.normalise import normalise
+
+    monkeypatch.setattr(C, "LATE_SHARE", 1.0)
+    sentence = _phrase("hang the 4x6/width in the bottom/Hr_btm row/Hr_btm from the first/St_loc1 stud on the "
+                       "left/Dw_loc1 pile/Dw_loc1")
+    out = C.value_repairs(Chooser(random.Random(seed)), [sentence])[0]
+    text = " ".join(t.word for t in out).replace(" ,", ",").replace(" .", ".")
+    assert any(c in text for c in (". ", "nah", "nope", "wait")), text  # a late cue, not one said in place
+    assert sorted((t.word, t.tag) for t in out if t.is_word and t.tag != "O") == \
+        sorted((t.word, t.tag) for t in sentence if t.is_word and t.tag != "O")
+    read = normalise(text)
+    assert read.words == normalise(" ".join(t.word for t in sentence if t.is_word)).words, text
+    assert any(c.kind == "repair" for c in read.changes)
 
 
 def _read_outcome(out):

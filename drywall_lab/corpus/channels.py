@@ -1050,6 +1050,17 @@ REPAIR_FORMS = ("{a}- {b}", "{a}— {b}", "{a}- no, {b}", "{a}, er, {b}, sorry",
                 "{a} uh {b} sorry", "{a}, sorry, {b}", "{a} no {b}")
 _OTHER_SIDE = {"left": "right", "right": "left"}
 _OTHER_ROW = {"top": "bottom", "bottom": "top"}
+#: A value taken back late (``_late_repair``): after a reason ("500111... nah that'd hang past the end, 500110"), or
+#: with a few of the words after it said before the cue, closed by a full stop ("top row from the first stud, no.
+#: bottom row"). R the reason; the reasons name ends, rows and neighbours of other things.
+LATE_CUES = ("{a}. nah {r}, {b}", "{a}, no wait, {r}, {b}", "{a}. sorry, {r}, {b}", "{a}, nope, {r}, {b}",
+             "{a}. no, {r}, {b}")
+LATE_CLOSERS = (", no. {b}", ". no. {b}", ", sorry. {b}", ". nah. {b}", ", nope. {b}")
+REPAIR_REASONS = ("that one's taken", "that'd hang past the end", "wrong one", "my mistake", "too far over",
+                  "that's got a sheet on it already", "can't reach that from here", "I misread the tag",
+                  "it would run into the last one", "misread the drawing", "that spot is done", "wrong pile")
+#: The share of values taken back that are taken back late.
+LATE_SHARE = 0.4
 
 
 def _taken_back(rng: random.Random, tok: Token) -> str | None:
@@ -1081,6 +1092,7 @@ def value_repairs(ch: Chooser, sentences: Sentences) -> Sentences:
     si, i, other = ch.rng.choice(spots)
     form = ch.rng.choice(REPAIR_FORMS)
     meant = sentences[si][i]
+    related = False
     if meant.tag == "ID_stud" and _is_id(meant) and ch.chance(0.3):  # "500105- no, one more over to the right, 500106"
         d = ch.rng.choice([-3, -2, -1, 1, 2, 3])
         if 500100 <= int(meant.word) - d <= 500112:
@@ -1089,15 +1101,58 @@ def value_repairs(ch: Chooser, sentences: Sentences) -> Sentences:
             rel = ch.rng.choice([f"{NUMBER_WORDS[abs(d)]} more over to the {side}", f"{NUMBER_WORDS[abs(d)]} over to the {side}"]
                                 + (["the next one", f"the next one to the {side}"] if abs(d) == 1 else []))
             form = ch.rng.choice(["{a}- no, " + rel + ", {b}", "{a}, no, " + rel + ", {b}", "{a}— sorry, " + rel + " {b}"])
-    before, after = (_untagged(part) for part in form.replace("{a}", other).split("{b}"))
+            related = True
     out = [list(s) for s in sentences]
+    if not related and ch.chance(LATE_SHARE):
+        out[si] = _late_repair(ch, out[si], i, other)
+        return out
+    before, after = (_untagged(part) for part in form.replace("{a}", other).split("{b}"))
     out[si][i:i + 1] = before + [out[si][i]] + after
     return out
 
 
+_ID = re.compile(r"^500\d{3}$")
+
+
+def _same_kind(word: str) -> set[str]:
+    """The words that name a value of ``word``'s kind (a side, a row; for an id or an ordinal, the ordinals and
+    "500", standing for any id): none of them may come between a value and its late repair."""
+    low = word.lower()
+    if low in _OTHER_SIDE:
+        return set(_OTHER_SIDE)
+    if low in _OTHER_ROW:
+        return set(_OTHER_ROW)
+    return {"500", *ORDINAL_WORDS.values(), *ORDINAL_DIGITS.values()}
+
+
+def _late_repair(ch: Chooser, sentence: Phrase, i: int, other: str) -> Phrase:
+    """``sentence`` with its value at ``i`` taken back late (``LATE_CUES``, ``LATE_CLOSERS``): ``other`` said in its
+    place, then a reason or the rest of its clause, the cue and the value meant (with its noun said again, ``O``:
+    the noun's tag stays where it was first said). The front end's ``resolve_late_repairs`` puts the value meant back."""
+    meant = sentence[i]
+    noun = sentence[i + 1] if i + 1 < len(sentence) and sentence[i + 1].is_word \
+        and sentence[i + 1].word.lower() in ("row", "course", "stud", "pile", "stack") else None
+    start = i + 1 + (noun is not None)
+    end = next((k for k in range(start, len(sentence)) if not sentence[k].is_word), len(sentence))
+    rest = [t.word.lower() for t in sentence[start:end]]
+    kinds = _same_kind(meant.word)
+    said_on = end - start if 1 <= len(rest) <= 5 and not kinds & set(rest) and not (
+        kinds & {"500"} and any(_ID.match(w) for w in rest)) and ch.chance(0.5) else 0
+    closers = [c for c in LATE_CLOSERS if not (_ID.match(meant.word) and "no." in c)]  # "no. 500104": a label
+    form = ch.rng.choice(closers) if said_on and ch.chance(0.7) else \
+        ch.rng.choice(LATE_CUES).replace("{r}", ch.rng.choice(REPAIR_REASONS))
+    cue = _untagged(form.split("{b}")[0].replace("{a}", ""))
+    again = [Token(noun.word, "O", "O")] if noun is not None else []
+    if said_on:
+        return [*sentence[:i], Token(other, "O", "O"), *sentence[i + 1:start + said_on], *cue, meant, *again,
+                *sentence[start + said_on:]]
+    return [*sentence[:i], Token(other, "O", "O"), *cue, meant, *sentence[i + 1:]]
+
+
 def _untagged(text: str) -> Phrase:
-    """Words said around a value, all ``O``, with their commas as punctuation ("500101, er," -> 500101 , er ,)."""
-    return [Token(",", None, None) if w == "," else Token(w, "O", "O") for w in re.findall(r",|[^\s,]+", text)]
+    """Words said around a value, all ``O``, with their commas and full stops as punctuation ("500101, er," ->
+    500101 , er ,)."""
+    return [Token(w, None, None) if w in ",." else Token(w, "O", "O") for w in re.findall(r"[,.]|[^\s,.]+", text)]
 
 
 # --- a table pasted from a spreadsheet ----------------------------------------------------------------------

@@ -48,8 +48,8 @@ FILLERS: frozenset[tuple[str, ...]] = frozenset({
     ("you", "know"), ("like,",), ("i", "think"), ("i", "guess"), ("kinda",), ("sorta",),
 })
 #: Words that start a repair after a broken-off word ("the four by- no, the two by eight").
-REPAIR_CUES: tuple[tuple[str, ...], ...] = (("no",), ("sorry",), ("i", "mean"), ("wait",), ("make", "that"),
-                                             ("rather",), ("scratch", "that"))
+REPAIR_CUES: tuple[tuple[str, ...], ...] = (("no",), ("nah",), ("nope",), ("sorry",), ("i", "mean"), ("wait",),
+                                             ("make", "that"), ("rather",), ("scratch", "that"))
 #: How far back a repair may start again: the words said just before the break.
 REPAIR_REACH = 4
 DIGIT_WORDS: dict[str, str] = {"zero": "0", "oh": "0", "o": "0", "nought": "0", "one": "1", "two": "2", "three": "3",
@@ -67,6 +67,7 @@ _SPLIT_ID = re.compile(r"^(\d{3})[-–.,](\d{3})$")
 _MARKED_ID = re.compile(r"^(?:#|no\.?|nr\.?|num\.?)(5\d{5})$", re.I)
 _BROKEN_OFF = re.compile(r"[\w'][-–—]+$")
 _PAUSE = re.compile(r"\w[,;]+$")
+_STOP = re.compile(r"\w[.!?…]+$")
 #: What glues a form's or a program's fields into one word: "|", arrows, a colon before text, "=", brackets, "_", a
 #: leading "--" ("Stud:500104", "2x8->500106", "place(stud=500104", "centre_line", "--stack").
 _FIELD_SEPARATORS = re.compile(r"\s*(?:\||->|=>|→|⇒|—>|:(?=\S)|=|[()\[\]{}]|_|^--)\s*")
@@ -91,6 +92,8 @@ class Piece:
     cell: tuple[int, int] = (0, 0)
     #: a colon after it, as typed ("Kev:" in a chat message's header)
     labelled: bool = False
+    #: a full stop, an ellipsis, "!" or "?" after it ("500111... nah", "no. Bottom course")
+    stopped: bool = False
 
 
 @dataclass(frozen=True)
@@ -235,8 +238,8 @@ def _read_as(words: Sequence[str], said: tuple[int, ...], last: Piece, roles: Se
     """The pieces for ``words``, read in place of a span of the worker's words (``said``) whose last piece is
     ``last``: the last word keeps its break and its pause; ``roles`` as in ``Piece.role``."""
     end = len(words) - 1
-    return [Piece(w, said, last.broken_off and k == end, last.paused and k == end, roles[k] if roles else "")
-            for k, w in enumerate(words)]
+    return [Piece(w, said, last.broken_off and k == end, last.paused and k == end, roles[k] if roles else "",
+                  stopped=last.stopped and k == end) for k, w in enumerate(words)]
 
 
 def _text(pieces: Sequence[Piece], said: Sequence[str]) -> str:
@@ -369,6 +372,9 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
         reading = exact.get(p.word, any_case.get(p.word.lower())) or _side_letter(pieces, k)
         if p.word.lower() == "bot" and _count_follows(pieces, k):
             reading = None  # "bot four" is a unit's call sign, not the bottom row
+        if reading == "-" and p.word == "no." and not _number_follows(pieces, k):
+            out.append(replace(p, word=p.word.rstrip(".:"), stopped=p.word.endswith(".")))  # "no. Bottom course"
+            continue
         if reading is None:
             out.append(p)
             continue
@@ -376,6 +382,14 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
         if reading != "-":
             out += _read_as(reading.split(), p.said, p)
     return out
+
+
+def _number_follows(pieces: Sequence[Piece], k: int) -> bool:
+    """Whether a number (digits, "#", a digit word) follows piece ``k``: what a label such as "no." introduces."""
+    if k + 1 >= len(pieces):
+        return False
+    word = pieces[k + 1].word.lower()
+    return word[:1].isdigit() or word.startswith("#") or word in DIGIT_WORDS or word in TEEN_WORDS
 
 
 def translate_code_switch(pieces: list[Piece], changes: list[Change],
@@ -635,7 +649,7 @@ def _id_piece(run: Sequence[Piece], digits: str, changes: list[Change], also: Se
     if len(words) > 1 or words[0].word != digits:
         changes.append(Change("id", " ".join(p.word for p in words), digits))
     return Piece(digits, tuple(s for p in words for s in p.said), words[-1].broken_off, words[-1].paused,
-                 words[0].role)
+                 words[0].role, stopped=words[-1].stopped)
 
 
 def read_ids(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
@@ -1026,7 +1040,7 @@ def anchor_last(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 _SIDE_VALUES = frozenset({"left", "right"})
 _ROW_VALUES = frozenset({"top", "bottom"})
 #: Nouns a value may carry before the break ("the bottom row— top row").
-_VALUE_NOUNS = frozenset({"row", "stud", "pile", "stack", "one", "panel", "sheet", "line", "side"})
+_VALUE_NOUNS = frozenset({"row", "course", "stud", "pile", "stack", "one", "panel", "sheet", "line", "side"})
 
 
 def _value_kind(word: str) -> str | None:
@@ -1093,6 +1107,67 @@ def resolve_value_repairs(pieces: list[Piece], changes: list[Change]) -> list[Pi
             changes.append(Change("repair", " ".join(p.word for p in pieces[end:end + after]), ""))
             i = end + after
     return out
+
+
+#: How many words may stand between a value and the cue that takes it back later ("top course from the first
+#: stud, no. bottom course"), and how many words of a reason between the cue and the value meant ("500111... nah
+#: that'd hang past the end, 500110").
+LATE_REACH = 6
+REASON_REACH = 8
+#: Values that name the same thing in two ways: a stud said by its id or by its place in the row.
+_KIND_GROUPS = {"id": {"id", "ordinal"}, "ordinal": {"id", "ordinal"}}
+
+
+def _late_repair(pieces: Sequence[Piece]) -> tuple[int, int, int, int] | None:
+    """The first value taken back late in ``pieces``: (the old value, the cue, the value meant, the end of what goes),
+    or None (``resolve_late_repairs``)."""
+    for c in range(1, len(pieces)):
+        cue = _starts(pieces, c, REPAIR_CUES)
+        if not cue or not (pieces[c - 1].paused or pieces[c - 1].stopped):
+            continue
+        d = c + cue
+        while (more := _starts(pieces, d, REPAIR_CUES)):
+            d += more  # "no wait", "nah sorry"
+        plain_no = d == c + 1 and pieces[c].word.lower() == "no" and not (pieces[c].paused or pieces[c].stopped)
+        for e in range(d, min(len(pieces), d + REASON_REACH + 1)):
+            if e > d and (plain_no or not (pieces[e - 1].paused or pieces[e - 1].stopped)):
+                continue  # a reason ends with a pause before the value meant; "no gaps, ..." is no cue
+            if e == d and not pieces[d - 1].stopped:
+                continue  # a cue between commas is read where it is said (``resolve_value_repairs``), or left to the tagger
+            b = e + (e < len(pieces) - 1 and pieces[e].word.lower() in ("the", "a"))
+            kind = _value_kind(pieces[b].word) if b < len(pieces) else None
+            if kind is None:
+                continue
+            if any(_value_kind(p.word) for p in pieces[d:e]):
+                break  # the reason holds a value of its own: not a repair read here
+            group = _KIND_GROUPS.get(kind, {kind})
+            old = next((k for k in range(c - 1, max(-1, c - 2 - LATE_REACH), -1)
+                        if _value_kind(pieces[k].word) in group), None)
+            if old is None or _value_kind(pieces[old].word) != kind or pieces[old].word.lower() == pieces[b].word.lower():
+                break  # the nearest value of its group is of another kind ("500321 at stud 3rd ..., no, 500108")
+            end = b + 1
+            if (old + 1 < c and end < len(pieces) and pieces[old + 1].word.lower() in _VALUE_NOUNS
+                    and pieces[end].word.lower() == pieces[old + 1].word.lower()):
+                end += 1  # the noun said again with the value meant ("... no. Bottom course")
+            between = [p.word.lower() for p in pieces[old + 1:c]]
+            end += next((n for n in range(len(between), 0, -1)
+                         if [p.word.lower() for p in pieces[end:end + n]] == between[-n:]), 0)  # "from the right" again
+            return old, c, b, end
+    return None
+
+
+def resolve_late_repairs(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A value taken back a few words after it was said (the final intention counts): after a pause, a repair cue,
+    perhaps a short reason ending with a pause, and a value of the same kind ("top course from the first stud, no.
+    bottom course"; "on 500111... nah that'd hang past the end, 500110"). The value meant takes the old one's place,
+    the words between them stay, and the cue, the reason and the noun said again are dropped. Runs after
+    ``resolve_value_repairs``, which reads a value taken back right where it was said."""
+    while (found := _late_repair(pieces)) is not None:
+        old, c, b, end = found
+        changes.append(Change("repair", " ".join(p.word for p in [pieces[old], *pieces[c:b]]), pieces[b].word))
+        pieces = [*pieces[:old], replace(pieces[b], paused=pieces[old].paused, stopped=pieces[old].stopped),
+                  *pieces[old + 1:c], *pieces[end:]]
+    return pieces
 
 
 # --- a table pasted from a spreadsheet ----------------------------------------------------------------------
@@ -1205,8 +1280,8 @@ def read_tables(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 
 #: The front end's steps, in order.
 STEPS: tuple[Step, ...] = (drop_chat_stamps, read_tables, split_fields, read_offsets, translate_code_switch, expand_shorthand,
-                           drop_fillers, read_ids, read_star_corrections, resolve_value_repairs, resolve_false_starts,
-                           anchor_last, metric_sizes, singular_sizes)
+                           drop_fillers, read_ids, read_star_corrections, resolve_value_repairs, resolve_late_repairs,
+                           resolve_false_starts, anchor_last, metric_sizes, singular_sizes)
 
 
 #: Written labels that only introduce the number after them ("stud no. 500104"); their full stop is what tells them
@@ -1231,7 +1306,7 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
                     read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word
                     paused = bool(_PAUSE.search(raw))
                     pieces.append(Piece(read, (len(said),), broken_off, paused=paused, cell=(line, cell),
-                                        labelled=raw.endswith(":")))
+                                        labelled=raw.endswith(":"), stopped=bool(_STOP.search(raw))))
                     said.append(word)
                 cell += bool(_PAUSE.search(raw))
     return said, pieces

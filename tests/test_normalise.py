@@ -385,3 +385,52 @@ def test_a_phrase_of_the_lexicon_never_runs_across_a_comma(tmp_path):
         return " ".join(p.word for p in N.translate_code_switch(N._pieces(text)[1], [], lexicon))
     assert read("hàng trên cùng") == "topmost row"
     assert read("hàng trên, cùng stud") == "top row the same stud"
+
+
+@pytest.mark.parametrize("said, read", [
+    ("the top row from the first stud, no. bottom row", "the bottom row from the first stud"),
+    ("on 500111... nah that'd hang past the end, 500110, centre line", "on 500110 centre line"),
+    ("put the 4x8 on 500105, no wait that one is taken, 500106 then", "put the 4x8 on 500106 then"),
+    ("on the second stud from the right. sorry, wrong one, the fourth from the right", "on the fourth stud from the right"),
+    # a cue between commas is read where it is said, or left to the tagger; a "no" that is no cue stays
+    ("the third stud from the left, no, from the right", "the third stud from the left no from the right"),
+    ("the top row, no gaps, bottom edge flush", "the top row no gaps bottom edge flush"),
+    # the nearest value that names the stud is an ordinal: the panel's id is not what was taken back
+    ("the 2x8 500321 at stud 3rd from the right. no, 500108", "the 2x8 500321 at stud 3rd from the right no 500108"),
+    ("stud no. 500104 please", "stud 500104 please"),  # "no." before a number is a label
+])
+def test_a_value_taken_back_late_gives_way_to_the_value_meant(said, read):
+    assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
+    ("Subject: RE: East wall, L4\n\nput the 2x8 on 500104\n\n> are we doing 500107 first?\n> Raj\n\nDana | PM",
+     "put the 2x8 on 500104"),
+    ("Subject: Level 2\n\nHi all,\nthe full sheet on 500100, upright.\n\nThanks,\nDana\nSent from my iPhone",
+     "Hi all the full sheet on 500100 upright"),
+    ("> top row or bottom?\n\nbottom row, 4x6 from the right, stud 500102\n\nP. Shah | Site Super\nOffice 555-0117",
+     "bottom row 4x6 from the right stud 500102"),
+    # no blank line before the last line: it is the instruction's, not a sign-off
+    ("grab the 2x8 from the middle\nCentre Line", "grab the 2x8 from the middle Centre Line"),
+])
+def test_an_emails_header_quoted_lines_and_sign_off_are_dropped(said, read):
+    assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
+    ("MIKE: the full sheet on 500104, centre line. DAVE: nah, 500103. MIKE: ok.", "the full sheet on 500103 centre line ok"),
+    ("Ana: 2x8 in the top row. Sam Ortiz: nope, wrong one, bottom", "2x8 in the bottom row"),
+    ("Note: put the 2x8 on 500104. Also: centre line", "Note put the 2x8 on 500104 Also centre line"),  # notes
+    ("Kev: put the 2x8 on 500104", "Kev put the 2x8 on 500104"),  # one label alone is no conversation
+])
+def test_a_conversations_speaker_labels_are_dropped_and_an_overruled_value_gives_way(said, read):
+    assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said", ["500104'e", "500104’ye", "500104-го", "500104-й"])
+def test_an_id_with_a_case_ending_is_read_as_the_id(said):
+    assert N.normalise_text(f"put it on {said} stud") == "put it on 500104 stud"
+
+
+def test_an_ids_english_possessive_is_no_case_ending():
+    assert N.normalise_text("500100's covered") == "500100's covered"

@@ -20,7 +20,8 @@ keeping the meaning and carrying every word's tag along:
   left of it ("whatever is left of the full sheets");
 - ``openers``: the instruction opened as the next job is ("last thing:", "first off,"), words that name nothing;
 - ``code_switch``: words and phrases of another language or dialect mixed in ("la pila de la izquierda", "cuatro
-  por ocho", "der mittlere Stapel", "stand am for stud"), from the same lexicon the front end reads them back with (``data/lexicon/code_switch.tsv``);
+  por ocho", "der mittlere Stapel", "stand am for stud"), from the same lexicon the front end reads them back with
+  (``data/lexicon/code_switch.tsv``), an id with the language's case ending now and then ("500104'e");
 - ``glued_fields``: typed as a program or a terse form ("stud=500104", "centre_line", "3rd-from-right"), a stud as a
   sum ("prev+2", "500104-1") and a value after its label ("size=same", "row=top");
 - ``value_repairs``: one value said wrongly and taken back by another of its kind ("stud 500101, er, 500100, sorry",
@@ -33,10 +34,14 @@ keeping the meaning and carrying every word's tag along:
   Kev: ..."), now and then a value corrected with a star in a message of its own ("*500105");
 - ``anchor_first``: a stud counted from an anchor said before the step, as verb-final languages order it ("from the
   previous stud, two to the right", "starting at 500104 go three to the left").
+- ``email_replies``: the instruction sent as an e-mail reply, under a subject line, above or below lines quoted from
+  the message it answers (naming other studs, sizes and rows) and over a sign-off ("Dana | PM | Sent from my phone").
+- ``crew_crosstalk``: the instruction as two workers said it to each other, copied in under their labels ("MIKE:
+  ... DAVE: nah, 500103, ..."), one now and then overruling a value the other said.
 
 The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides, the code switch, the glued
-fields, the values taken back, the pasted tables, an anchor said first and chat messages' headers and starred
-corrections into the corpus's written forms; the tagger must learn the
+fields, the values taken back, the pasted tables, an anchor said first, chat messages' headers and starred
+corrections, an e-mail's frame and the labels of a conversation into the corpus's written forms; the tagger must learn the
 others, and the IM reads a step that goes on from the last stud (``im.stud.stud_going_on``). Whole channels and pairs of channels are held back from the
 training splits (``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction
 said in a way the tagger never met (first sight).
@@ -704,7 +709,8 @@ def code_switch(ch: Chooser, sentences: Sentences) -> Sentences:
     from drywall_lab.nlu.normalise import normalise
 
     by_language = _foreign_forms()
-    forms = by_language[ch.rng.choice(sorted(by_language))]
+    language = ch.rng.choice(sorted(by_language))
+    forms = by_language[language]
     longest = max(map(len, forms))
 
     def read(phrase: Phrase) -> tuple[list[str], list[str]]:
@@ -717,8 +723,17 @@ def code_switch(ch: Chooser, sentences: Sentences) -> Sentences:
         english = read(sentence)
         new = next((new for new in (_switched(ch, sentence, forms, longest) for _ in range(3))
                     if read(new) == english), sentence)
+        if language in CASE_ENDINGS:  # "500104'e": an id takes the language's case ending now and then
+            new = [Token(t.word + ch.rng.choice(CASE_ENDINGS[language]), t.tag, t.coref)
+                   if _is_id(t) and ch.chance(0.5) else t for t in new]
         out.append(new)
     return out
+
+
+#: Case endings that languages with cases put on an id, as their speakers type them.
+CASE_ENDINGS = {"tr": ("'e", "'a", "'ye", "'ya", "'de", "'da", "'den", "'dan", "’e"),
+                "ru": ("-й", "-го", "-му", "-м", "-ом"), "uk": ("-й", "-го", "-му", "-ому"),
+                "pl": ("-ego", "-ym", "-u", "-em")}
 
 
 # --- openers -------------------------------------------------------------------------------------------------
@@ -993,6 +1008,119 @@ def chat_messages(ch: Chooser, sentences: Sentences) -> Sentences:
     return [out]
 
 
+# --- an e-mail reply --------------------------------------------------------------------------------------------
+EMAIL_SUBJECTS = ("{wall} wall, L{n}", "Drywall - {wall} wall", "Hanging sequence", "Job {job} board install",
+                  "{wall} wall list", "Level {n} drywall", "Board schedule wk {n}", "Unit {n}{letter} walls")
+EMAIL_GREETINGS = ("Hi all,", "Morning team,", "Hi {name},", "Team,", "Hello,", "{name} -")
+#: Questions quoted from the message the e-mail answers: they name studs, sizes, rows and stacks that are not the
+#: command's ({stud}, {size}, {row}, {side}, {count}, {n}).
+QUOTED_QUESTIONS = ("{name} here - are we still starting the {size}s at {stud}?",
+                    "Quick one: does the {row} row go in before lunch?",
+                    "The plan I have shows {stud} for that one, which is right?",
+                    "Should the {size} come off the {side} stack or is that pile for level {n}?",
+                    "Inspector asked about {stud} and {stud2}, any update?",
+                    "Are we hanging the {row} course first on this wall?",
+                    "{count} sheets left on the {side} pile, want me to order more?",
+                    "Do you want the {size} upright or flat in the {row} row?")
+EMAIL_SIGNOFFS = ("{name}", "Thanks,\n{name}", "{name} | {role} | Sent from my phone", "Cheers,\n{initial}.",
+                  "{name} {surname} | {role}\nOffice 555-01{nn} | Job {job}", "{initial}.", "Sent from my iPhone",
+                  "Regards,\n{name} {surname}\n{role}")
+EMAIL_NAMES = ("Dana", "Marco", "Priya", "Tom", "Lena", "Kofi", "Ines", "Raj")
+EMAIL_SURNAMES = ("Whitfield", "Okafor", "Shah", "Brennan", "Novak", "Castillo")
+EMAIL_ROLES = ("PM", "Project Manager", "Site Super", "Foreman", "Site Engineer")
+
+
+def _frame_words(text: str) -> Phrase:
+    """Lines of an e-mail's frame, every word ``O``, each line's last word carrying its line break."""
+    out: Phrase = []
+    for line in text.split("\n"):
+        words = [Token(w, "O", "O") for w in line.split()]
+        if words:
+            out += words[:-1] + [Token(words[-1].word + "\n", "O", "O")]
+        elif out:
+            out[-1] = Token(out[-1].word + "\n", "O", "O")  # a blank line
+    return out
+
+
+def email_replies(ch: Chooser, sentences: Sentences) -> Sentences:
+    """The instruction sent as an e-mail reply: a subject line ("Subject: RE: East wall, L2"), perhaps a greeting,
+    the instruction, the lines it quotes from the message it answers ("> are we still starting the 4x8s at
+    500107?", naming other studs, sizes and rows), and a sign-off after a blank line ("Dana | PM | Sent from my
+    phone"). All but the instruction is ``O``; the front end drops the header, the quoted lines and the sign-off
+    (``nlu.normalise.drop_email_frame``)."""
+    rng = ch.rng
+    words = [t for s in sentences for t in s]
+    if sum(t.is_word for t in words) < 3 or any("\n" in t.word for t in words):
+        return sentences
+    name, surname = rng.choice(EMAIL_NAMES), rng.choice(EMAIL_SURNAMES)
+    slots = dict(wall=rng.choice(("North", "East", "South", "West", "Lobby", "Stair")), n=rng.randint(1, 9),
+                 job=rng.randint(1000, 4999), letter=rng.choice("ABCD"), name=name, surname=surname,
+                 initial=name[0], role=rng.choice(EMAIL_ROLES), nn=f"{rng.randint(0, 99):02d}",
+                 stud=f"5001{rng.randint(0, 12):02d}", stud2=f"5001{rng.randint(0, 12):02d}",
+                 size=rng.choice(("4x8", "2x8", "4x6", "full sheet", "4 x 8")), row=rng.choice(("top", "bottom")),
+                 side=rng.choice(("left", "right", "middle")), count=rng.choice(("two", "three", "5", "12")))
+    asker = rng.choice([n for n in EMAIL_NAMES if n != name])
+    subject = "Subject: " + "RE: " * rng.choice((0, 1, 1, 2)) + rng.choice(EMAIL_SUBJECTS).format(**slots)
+    quoted = [f"> {rng.choice(QUOTED_QUESTIONS).format(**{**slots, 'name': asker})}"]
+    if ch.chance(0.5):
+        quoted.append(f"> {asker}")
+    head = subject + "\n\n" + (rng.choice(EMAIL_GREETINGS).format(**slots) + "\n" if ch.chance(0.4) else "")
+    quote_first = ch.chance(0.3)
+    if quote_first:
+        head += "\n".join(quoted) + "\n\n"
+    body = words[next(k for k, t in enumerate(words) if t.is_word):]
+    last = max(j for j, t in enumerate(body) if t.is_word)
+    body = body[:last] + [Token(body[last].word + "\n\n", body[last].tag, body[last].coref)]  # its closing mark
+    # goes: glued to the word before, it would open the next line ("\n\n. > are we ...")
+    tail = ("" if quote_first or not ch.chance(0.8) else "\n".join(quoted) + "\n\n") + \
+        rng.choice(EMAIL_SIGNOFFS).format(**slots)
+    return [_frame_words(head) + body + _frame_words(tail)]
+
+
+# --- a conversation between two workers ------------------------------------------------------------------------
+CREW_SPEAKERS = ("MIKE", "DAVE", "Ana", "RAJ", "Tomek", "LUIS", "Kim", "SHAUNA")
+#: How the second speaker overrules a value the first said (B the value meant, R a reason).
+OVERRULES = ("nah, {b}", "no, {b}, {r}", "nope, {r}, {b}", "nah, {r}, {b}", "no no, {b}", "nah mate, {b}, {r}")
+#: How the first speaker takes the overruling up, if at all.
+TAKEN_UP = ("yeah fair, {b}.", "ok, {b} then.", "fair enough.", "right, {b}.", "")
+ACKNOWLEDGED = ("yep.", "copy.", "on it.", "sweet.", "yup, go.")
+
+
+def crew_crosstalk(ch: Chooser, sentences: Sentences) -> Sentences:
+    """The instruction as two workers said it to each other, copied in as a transcript under their labels
+    ("MIKE: next full sheet on 500104. DAVE: nah, 500103, it'd hit the window. MIKE: yeah fair, 500103."): one
+    says the instruction, now and then with a value that the other overrules (the value meant keeps its tag, the
+    one overruled and a value said again in agreement are ``O``), or the other acknowledges it. The front end drops
+    the labels (``nlu.normalise.drop_speaker_labels``) and reads a value overruled in another speaker's turn as
+    taken back (``resolve_late_repairs``)."""
+    rng = ch.rng
+    words = [t for s in sentences for t in s]
+    if sum(t.is_word for t in words) < 3 or any("\n" in t.word or t.word.endswith(":") for t in words):
+        return sentences
+    a, b = rng.sample(CREW_SPEAKERS, 2)
+    body = words[next(k for k, t in enumerate(words) if t.is_word):]
+    while body and not body[-1].is_word:
+        body.pop()
+    spots = [(i, other) for i, tok in enumerate(body) if tok.is_word and tok.tag != "O"
+             and (other := _taken_back(rng, tok)) is not None]
+    label = lambda who: Token(who + ":", "O", "O")  # noqa: E731
+    stop = Token(".", None, None)
+    if not spots or not ch.punctuated or not ch.chance(0.7):  # without its full stops, no turn is told apart
+        return [[label(a), *body, stop, label(b), *_untagged(rng.choice(ACKNOWLEDGED).rstrip("."))]]
+    i, other = rng.choice(spots)
+    meant = body[i]
+    said = [*body[:i], Token(other, "O", "O"), *body[i + 1:]]
+    form = rng.choice(OVERRULES).replace("{r}", rng.choice(REPAIR_REASONS))
+    before, after = (_untagged(part) for part in form.split("{b}"))
+    out = [label(a), *said, stop, label(b), *before, meant, *after]
+    taken_up = rng.choice(TAKEN_UP).rstrip(".")
+    if taken_up:
+        out += [stop, label(a), *_untagged(taken_up.replace("{b}", meant.word))]
+    if not reads_alike([out], [body], other):  # a form not read back: the other speaker only acknowledges it
+        return [[label(a), *body, stop, label(b), *_untagged(rng.choice(ACKNOWLEDGED).rstrip("."))]]
+    return [out]
+
+
 def _labels_first(sentence: Phrase, glue: str) -> Phrase:
     """A one-word value that says which, typed after its field's label ("same size" -> "size=same", "top row" ->
     "row=top", "the left pile" -> "pile=left"; the front end's ``split_fields`` puts the words back in order)."""
@@ -1103,9 +1231,11 @@ def value_repairs(ch: Chooser, sentences: Sentences) -> Sentences:
             form = ch.rng.choice(["{a}- no, " + rel + ", {b}", "{a}, no, " + rel + ", {b}", "{a}— sorry, " + rel + " {b}"])
             related = True
     out = [list(s) for s in sentences]
-    if not related and ch.chance(LATE_SHARE):
+    if not related and ch.punctuated and ch.chance(LATE_SHARE):  # without punctuation a late repair is not read
         out[si] = _late_repair(ch, out[si], i, other)
-        return out
+        if reads_alike(out, sentences, other):
+            return out
+        out[si] = list(sentences[si])  # a form the front end would not read back: said in place instead
     before, after = (_untagged(part) for part in form.replace("{a}", other).split("{b}"))
     out[si][i:i + 1] = before + [out[si][i]] + after
     return out
@@ -1123,6 +1253,30 @@ def _same_kind(word: str) -> set[str]:
     if low in _OTHER_ROW:
         return set(_OTHER_ROW)
     return {"500", *ORDINAL_WORDS.values(), *ORDINAL_DIGITS.values()}
+
+
+def reads_alike(new: Sentences, old: Sentences, gone: str) -> bool:
+    """Whether the front end reads the tagged words of ``new`` as those of ``old`` and drops the value ``gone`` (one
+    taken back), ``new`` typed as written and in lower case: a channel whose form needs more than its tags to be
+    read (a late repair's cue after a full stop, a speaker's turn) checks it before saying a row so."""
+    from drywall_lab.corpus.generator import join_tokens
+    from drywall_lab.corpus.io import tokenize
+    from drywall_lab.nlu.normalise import normalise
+
+    def read(sentences: Sentences, punctuated: bool, lower: bool) -> list[tuple[str, str]]:
+        marks = [[t if not t.is_word or tokenize(t.word) else Token(t.word, None, None) for t in s] for s in sentences]
+        text, _, tags, _ = join_tokens(marks, punctuated, lambda w, first: w.lower() if lower else w)
+        n = normalise(text)
+        return [(w.lower(), t) for w, t in zip(n.words, n.tags_of_words(tags))]
+
+    def tagged(reading: list[tuple[str, str]]) -> list[tuple[str, str]]:
+        return [(w, t) for w, t in reading if t != "O"]
+
+    want = read(old, True, False)
+    kept = sum(w == gone.lower() for w, _ in want)
+    return all(tagged(got := read(new, punctuated, lower)) == tagged(want)
+               and sum(w == gone.lower() for w, _ in got) <= kept
+               for punctuated, lower in ((True, False), (True, True)))
 
 
 def _late_repair(ch: Chooser, sentence: Phrase, i: int, other: str) -> Phrase:
@@ -1236,7 +1390,7 @@ CHANNELS: dict[str, Channel] = {
     "disfluency": disfluency, "asides": asides, "plural_sizes": plural_sizes, "metric_sizes": metric_sizes,
     "code_switch": code_switch, "openers": openers, "glued_fields": glued_fields, "value_repairs": value_repairs,
     "continued_steps": continued_steps, "pasted_tables": pasted_tables, "anchor_first": anchor_first,
-    "chat_messages": chat_messages,
+    "chat_messages": chat_messages, "email_replies": email_replies, "crew_crosstalk": crew_crosstalk,
 }
 #: A row whose target is said by a property ("the narrow one") instead of its size, in every split: drawn where the
 #: target is said (``field_generator.size_property_draw``), so not a function of sentences; a row records it like one.
@@ -1260,7 +1414,7 @@ HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
 HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1, "value_repairs": 0.1,
                                         "continued_steps": 0.5, "pasted_tables": 0.05, "anchor_first": 0.5,
-                                        "chat_messages": 0.08}
+                                        "chat_messages": 0.08, "email_replies": 0.06, "crew_crosstalk": 0.06}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))
@@ -1298,13 +1452,15 @@ def overlay_drawn(row_id: str, name: str) -> tuple[Chooser, bool]:
     return ch, ch.chance(HELD_BACK_OVERLAYS[name])
 
 
-def apply_overlays(row_id: str, sentences: Sentences) -> tuple[Sentences, tuple[str, ...]]:
+def apply_overlays(row_id: str, sentences: Sentences, punctuated: bool = True) -> tuple[Sentences, tuple[str, ...]]:
     """A novel instruction through each overlay channel its own draw picks (``HELD_BACK_OVERLAYS``), and the names of
     those that changed it (an overlay with nothing to rewrite, "two studs further right" in an instruction with no
-    step from the last stud, leaves the row as it was and unnamed)."""
+    step from the last stud, leaves the row as it was and unnamed). ``punctuated``: whether the row will be written
+    with its punctuation (``Chooser.punctuated``)."""
     applied = []
     for name in HELD_BACK_OVERLAYS:
         ch, drawn = overlay_drawn(row_id, name)
+        ch.punctuated = punctuated
         if drawn:
             said = CHANNELS[name](ch, sentences)
             if said != sentences:

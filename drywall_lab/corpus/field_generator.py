@@ -1151,12 +1151,26 @@ def texting_forms(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
+def render_style(ch: Chooser, spoken: bool, shout: bool = False) -> tuple[str, bool]:
+    """The casing and whether the punctuation is kept, as ``render`` draws them."""
+    casing = "lower" if spoken else ("upper" if shout and ch.chance(0.3) else G._weighted(ch.rng, CASING))
+    return casing, not spoken and ch.rng.random() < 0.85
+
+
+def keeps_punctuation(ch: Chooser, spoken: bool, shout: bool = False) -> bool:
+    """Whether ``render`` will keep the punctuation, its draws left untaken (an overlay asks before it is laid)."""
+    state = ch.rng.getstate()
+    try:
+        return render_style(ch, spoken, shout)[1]
+    finally:
+        ch.rng.setstate(state)
+
+
 def render(ch: Chooser, sentences: Sentences, spoken: bool,
            shout: bool = False) -> tuple[str, list[str], list[str], list[str]]:
     """Text, words, tags and co-reference tags; casing and punctuation as typed, lost, shouted (more often when
     ``shout``: an impatient boss) or in Title Case (a checklist, a formal note)."""
-    casing = "lower" if spoken else ("upper" if shout and ch.chance(0.3) else G._weighted(ch.rng, CASING))
-    keep_punctuation = not spoken and ch.rng.random() < 0.85
+    casing, keep_punctuation = render_style(ch, spoken, shout)
 
     def cased(w: str, first: bool) -> str:
         if casing == "lower":
@@ -1391,7 +1405,8 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
         if landmark is not None:
             channels += (C.LANDMARK_ANCHORS,)
         if split == "novel":
-            sentences, overlays = C.apply_overlays(row_id, sentences)
+            sentences, overlays = C.apply_overlays(row_id, sentences,
+                                                   keeps_punctuation(ch, spoken, shout=register == "boss"))
             channels += overlays
         return register, channels, len(sentences), read_through_front_end(render(ch, sentences, spoken,
                                                                                  shout=register == "boss"))

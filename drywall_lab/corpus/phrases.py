@@ -35,6 +35,8 @@ class Chooser:
 
     rng: random.Random
     novel: bool = False
+    #: whether the instruction will be written with its punctuation (an overlay whose form needs it asks)
+    punctuated: bool = True
 
     def template(self, bank: list[str]) -> str:
         withheld = [t[1:] for t in bank if t.startswith("~")]

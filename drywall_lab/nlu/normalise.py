@@ -6,7 +6,11 @@ plural ("one of the 2x8s"), a board's sides in metric ("1200 x 2400", "600 mm wi
 hundred": the feet they stand for), the site's written shorthand ("CL", "btm", "pnl", "w/", "stud#", fields
 separated by ``|`` or ``->``), spoken disfluency (fillers, stutters, a false start broken off with a dash and
 repaired: "the four by- no, the two by eight"; a value taken back by another of its kind: "stud 500101, er, 500100,
-sorry"), a stud written as a sum as a program has it ("stud=prev+2", "500104-1"), and words of another language or
+sorry", also late, after a reason or the rest of its clause: "on 500111... nah that'd hang past the end, 500110"),
+what comes with a message copied in (a chat message's header, an e-mail's subject line, quoted lines and sign-off,
+the speakers' labels of a conversation, where the next speaker may overrule a value: "MIKE: ... on 500104. DAVE:
+nah, 500103"), an id with a case ending ("500104'e"), a stud written as a sum as a program has it ("stud=prev+2",
+"500104-1"), and words of another language or
 dialect a crew mixes into English (Spanish, German, French, Portuguese, Polish, West African Pidgin, Jamaican
 Creole, spoken English dialects: "la pila de la izquierda", "cuatro por ocho", "der mittlere Stapel", "stand am for
 stud", "that'n": ``data/lexicon/code_switch.tsv``). The paper's tagger (Sec. 3.1) learns surface forms from its
@@ -65,6 +69,9 @@ ID_PATTERN = re.compile(r"^500\d{3}$")
 _DIGITS = re.compile(r"^\d+$")
 _SPLIT_ID = re.compile(r"^(\d{3})[-–.,](\d{3})$")
 _MARKED_ID = re.compile(r"^(?:#|no\.?|nr\.?|num\.?)(5\d{5})$", re.I)
+#: An id with a case ending, as languages with cases write one ("500104'e", "500104-го", "500104:een"); not the
+#: English possessive ("500100's covered": the stud spoken of, not named for this step).
+_CASE_ENDING_ID = re.compile(r"^(5\d{5})(?:['’:-](?!s$)[^\W\d_]{1,4})$")
 _BROKEN_OFF = re.compile(r"[\w'][-–—]+$")
 _PAUSE = re.compile(r"\w[,;]+$")
 _STOP = re.compile(r"\w[.!?…]+$")
@@ -94,6 +101,10 @@ class Piece:
     labelled: bool = False
     #: a full stop, an ellipsis, "!" or "?" after it ("500111... nah", "no. Bottom course")
     stopped: bool = False
+    #: on a line quoted from an earlier e-mail ("> is the 2x8 in the top row?")
+    quoted: bool = False
+    #: the first word of another speaker's turn, after a speaker's label was dropped ("MIKE: ... DAVE: nah, ...")
+    turn: bool = False
 
 
 @dataclass(frozen=True)
@@ -513,7 +524,7 @@ def _number_parts(word: str) -> list[str] | None:
     w = _radio_digit(fold(word))  # "zéro" is "zero", "fife" is "five"
     if _DIGITS.match(w) or w in DIGIT_WORDS or w in TEEN_WORDS or w in TENS_WORDS or w in REPEATS or w == "hundred":
         return [w]
-    marked = _MARKED_ID.match(w)
+    marked = _MARKED_ID.match(w) or _CASE_ENDING_ID.match(w)
     if marked:
         return [marked.group(1)]
     split = _SPLIT_ID.match(w)
@@ -893,6 +904,117 @@ def drop_chat_stamps(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     return out
 
 
+# --- an e-mail and a conversation copied in ------------------------------------------------------------------
+#: Labels that start an e-mail's header line ("Subject: RE: East wall", "Fwd: ...").
+EMAIL_HEADERS = frozenset({"subject", "re", "fwd", "fw", "cc", "bcc"})
+#: Words that close an e-mail, on a line of their own before the sender's name.
+EMAIL_CLOSINGS = frozenset({"thanks", "thank", "cheers", "regards", "best", "rgds", "thx", "ta", "sincerely"})
+_PHONE = re.compile(r"^\+?\d{2,4}[-.]\d{3,4}(?:[-.]\d{3,4})?$|\w@\w")
+_INITIAL = re.compile(r"^[A-Z]$")
+
+
+def _lines(pieces: Sequence[Piece]) -> list[list[int]]:
+    """The indices of ``pieces`` by the line of the worker's text they stand on."""
+    out: list[list[int]] = []
+    for k, p in enumerate(pieces):
+        if not out or p.cell[0] != pieces[out[-1][-1]].cell[0]:
+            out.append([])
+        out[-1].append(k)
+    return out
+
+
+def _signed(line: Sequence[Piece]) -> bool:
+    """Whether a line at the end of an e-mail is its sign-off: a closing ("Thanks,"), a sender's name or initial
+    ("Dana", "D."), a signature's fields ("Dana Whitfield | Project Manager", "Office 555-0142"), "Sent from my
+    phone"."""
+    words = [p.word for p in line]
+    low = [w.lower() for w in words]
+    if len(words) > 10:
+        return False
+    if low[:2] == ["sent", "from"] or "|" in words or any(_PHONE.search(w) for w in words):
+        return True
+    if len(words) <= 3 and all(_NAME.match(w) and (w[0].isupper() or w == "--") or w == "--" for w in words):
+        return low[0] in EMAIL_CLOSINGS or not any(w in FIELD_LABELS or w in _SIDE_VALUES or w in _ROW_VALUES
+                                                   for w in low)
+    return len(words) <= 2 and low[0] in EMAIL_CLOSINGS
+
+
+def drop_email_frame(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """An instruction sent as an e-mail reply: its header lines ("Subject: RE: East wall, L2"), the lines it quotes
+    from the message it answers ("> is the 2x8 in the top row here?": what was asked, not what is meant now) and its
+    sign-off after a blank line ("Dana | PM | Sent from my phone") are dropped."""
+    lines = _lines(pieces)
+    if len(lines) < 2:
+        return pieces
+    drop: set[int] = set()
+    for line in lines:
+        first = pieces[line[0]]
+        if first.quoted or (first.labelled and first.word.lower() in EMAIL_HEADERS):
+            drop.update(line)
+    kept = [line for line in lines if line[0] not in drop]
+    block = 0  # the sign-off: the last lines, each one of a sign-off's, the first after a blank line
+    while block < len(kept) - 1 and _signed([pieces[k] for k in kept[-1 - block]]):
+        block += 1
+    while block and pieces[kept[-block][0]].cell[0] <= pieces[kept[-block - 1][-1]].cell[0] + 1:
+        block -= 1
+    for line in kept[len(kept) - block:]:
+        drop.update(line)
+    if not drop or len(drop) == len(pieces):
+        return pieces
+    for line in lines:
+        if line[0] in drop:
+            changes.append(Change("e-mail", " ".join(pieces[k].word for k in line), ""))
+    return [p for k, p in enumerate(pieces) if k not in drop]
+
+
+#: Words that label a form's field or a note, not a speaker ("Note: ...", "Target: 500322").
+NOT_SPEAKERS = frozenset({"note", "notes", "nb", "ps", "also", "target", "destination", "location", "ticket", "task",
+                          "job", "todo", "reason", "update", "edit", "next", "then", "first", "last", "step", "why",
+                          "where", "what", "which", "how", "question", "answer", "q", "a", "ok", "okay", "important",
+                          "warning", "careful", "caution", "tip", "remember", "reminder", "fyi"})
+
+
+def _speaker_at(pieces: Sequence[Piece], k: int) -> int:
+    """The length of a speaker's label at ``k`` ("MIKE:", "Sam Ortiz:", "kim:"): one name, or two capitalised, the
+    colon last; 0 where none."""
+    for n in (1, 2):
+        names = pieces[k:k + n]
+        if len(names) == n and names[-1].labelled and not any(p.labelled for p in names[:-1]) and all(
+                _NAME.match(p.word) and (n == 1 or p.word[0].isupper()) and p.word.lower() not in NOT_SPEAKERS
+                | FIELD_LABELS | _NUMBERING_LABELS | EMAIL_HEADERS for p in names):  # "Sam Ortiz:", not "left kim:"
+            return n
+    return 0
+
+
+def _turn_starts(pieces: Sequence[Piece], k: int) -> bool:
+    """Whether a turn may start at ``k``: the text's start, a new line, after a full stop."""
+    return k == 0 or pieces[k].cell[0] != pieces[k - 1].cell[0] or pieces[k - 1].stopped
+
+
+def drop_speaker_labels(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A conversation copied in as a transcript ("MIKE: next full sheet on 500104. DAVE: nah, 500103 ..."): a text
+    that opens with a speaker's label and has another where a turn may start (``_turn_starts``; anywhere when the
+    text lost its full stops, as a phone types it: "kim: ... raj: ...") has each label dropped, and the word after it
+    starts a turn (``Piece.turn``: a value a speaker overrules, ``resolve_late_repairs``). A single label ("Kev:
+    ...") is left to the chat header step."""
+    if not _speaker_at(pieces, 0):
+        return pieces
+    starts = [(k, n) for k in range(len(pieces)) if (n := _speaker_at(pieces, k))]
+    stopped = any(p.stopped for p in pieces)
+    starts = [(k, n) for k, n in starts if not stopped or _turn_starts(pieces, k)]
+    if len(starts) < 2:
+        return pieces
+    out: list[Piece] = []
+    k = 0
+    for start, n in starts:
+        out += pieces[k:start]
+        changes.append(Change("speaker", " ".join(p.word for p in pieces[start:start + n]), ""))
+        if start + n < len(pieces):
+            pieces[start + n] = replace(pieces[start + n], turn=True)
+        k = start + n
+    return out + pieces[k:]
+
+
 _TYPED_SIZE = re.compile(r"^\d+(?:'|ft)?x\d+(?:'|ft)?$", re.I)
 
 
@@ -1095,6 +1217,8 @@ def resolve_value_repairs(pieces: list[Piece], changes: list[Change]) -> list[Pi
         after = _starts(pieces, end, REPAIR_CUES) if b < len(pieces) else 0
         if after and end + after < len(pieces) and _value_kind(pieces[end + after].word) == kind:
             after = 0  # "left— right, I mean right": the cue leads the next repair
+        if after and _late_repair(pieces[j + 1:]) is not None:
+            after = 0  # "500302, 500111, nope, wrong one, 500110": the cue takes back the value before it
         if b >= len(pieces) or _value_kind(pieces[b].word) != kind or not (a.broken_off or cue or (a.paused and after)):
             out.append(pieces[i])
             i += 1
@@ -1120,7 +1244,8 @@ _KIND_GROUPS = {"id": {"id", "ordinal"}, "ordinal": {"id", "ordinal"}}
 
 def _late_repair(pieces: Sequence[Piece]) -> tuple[int, int, int, int] | None:
     """The first value taken back late in ``pieces``: (the old value, the cue, the value meant, the end of what goes),
-    or None (``resolve_late_repairs``)."""
+    or None (``resolve_late_repairs``). Without the pauses (a text said, or typed with no punctuation) none is read:
+    "... on 500109 no wait the one marked 500102" may take back the panel or the stud, and the decision asks."""
     for c in range(1, len(pieces)):
         cue = _starts(pieces, c, REPAIR_CUES)
         if not cue or not (pieces[c - 1].paused or pieces[c - 1].stopped):
@@ -1132,7 +1257,7 @@ def _late_repair(pieces: Sequence[Piece]) -> tuple[int, int, int, int] | None:
         for e in range(d, min(len(pieces), d + REASON_REACH + 1)):
             if e > d and (plain_no or not (pieces[e - 1].paused or pieces[e - 1].stopped)):
                 continue  # a reason ends with a pause before the value meant; "no gaps, ..." is no cue
-            if e == d and not pieces[d - 1].stopped:
+            if e == d and not (pieces[d - 1].stopped or pieces[c].turn):
                 continue  # a cue between commas is read where it is said (``resolve_value_repairs``), or left to the tagger
             b = e + (e < len(pieces) - 1 and pieces[e].word.lower() in ("the", "a"))
             kind = _value_kind(pieces[b].word) if b < len(pieces) else None
@@ -1141,8 +1266,9 @@ def _late_repair(pieces: Sequence[Piece]) -> tuple[int, int, int, int] | None:
             if any(_value_kind(p.word) for p in pieces[d:e]):
                 break  # the reason holds a value of its own: not a repair read here
             group = _KIND_GROUPS.get(kind, {kind})
-            old = next((k for k in range(c - 1, max(-1, c - 2 - LATE_REACH), -1)
-                        if _value_kind(pieces[k].word) in group), None)
+            turn = next((k for k in range(c - 1, -1, -1) if pieces[k].turn), 0)  # where the turn before starts
+            reach = turn - 1 if pieces[c].turn else max(-1, c - 2 - LATE_REACH)  # another speaker overrules a value
+            old = next((k for k in range(c - 1, reach, -1) if _value_kind(pieces[k].word) in group), None)
             if old is None or _value_kind(pieces[old].word) != kind or pieces[old].word.lower() == pieces[b].word.lower():
                 break  # the nearest value of its group is of another kind ("500321 at stud 3rd ..., no, 500108")
             end = b + 1
@@ -1159,7 +1285,8 @@ def _late_repair(pieces: Sequence[Piece]) -> tuple[int, int, int, int] | None:
 def resolve_late_repairs(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A value taken back a few words after it was said (the final intention counts): after a pause, a repair cue,
     perhaps a short reason ending with a pause, and a value of the same kind ("top course from the first stud, no.
-    bottom course"; "on 500111... nah that'd hang past the end, 500110"). The value meant takes the old one's place,
+    bottom course"; "on 500111... nah that'd hang past the end, 500110"), or in the next speaker's turn anywhere in
+    the turn before ("MIKE: ... on 500104, centre line. DAVE: nah, 500103"). The value meant takes the old one's place,
     the words between them stay, and the cue, the reason and the noun said again are dropped. Runs after
     ``resolve_value_repairs``, which reads a value taken back right where it was said."""
     while (found := _late_repair(pieces)) is not None:
@@ -1279,7 +1406,7 @@ def read_tables(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 
 
 #: The front end's steps, in order.
-STEPS: tuple[Step, ...] = (drop_chat_stamps, read_tables, split_fields, read_offsets, translate_code_switch, expand_shorthand,
+STEPS: tuple[Step, ...] = (drop_email_frame, drop_chat_stamps, drop_speaker_labels, read_tables, split_fields, read_offsets, translate_code_switch, expand_shorthand,
                            drop_fillers, read_ids, read_star_corrections, resolve_value_repairs, resolve_late_repairs,
                            resolve_false_starts, anchor_last, metric_sizes, singular_sizes)
 
@@ -1298,6 +1425,7 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
     pieces: list[Piece] = []
     for line, text_line in enumerate(text.split("\n")):
         cell = 0
+        quoted = text_line.lstrip().startswith(">")
         for k, between_tabs in enumerate(text_line.split("\t")):
             cell += k > 0
             for raw in between_tabs.split():
@@ -1306,7 +1434,7 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
                     read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word
                     paused = bool(_PAUSE.search(raw))
                     pieces.append(Piece(read, (len(said),), broken_off, paused=paused, cell=(line, cell),
-                                        labelled=raw.endswith(":"), stopped=bool(_STOP.search(raw))))
+                                        labelled=raw.endswith(":"), stopped=bool(_STOP.search(raw)), quoted=quoted))
                     said.append(word)
                 cell += bool(_PAUSE.search(raw))
     return said, pieces

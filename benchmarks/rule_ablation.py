@@ -184,9 +184,6 @@ REGISTRY: tuple[Rule, ...] = (
     Rule("unread_centre", D, "unread_centre", _none, "returns None",
          "the default placement while a centre word before a word for the stud stands untagged ('centred over the "
          "first framing member') gives the centre line as a candidate, as likely", "decision"),
-    Rule("unread_upright", D, "unread_upright", _none, "returns None",
-         "a row while a word saying the panel stands ('stand it upright') is untagged gives the panel upright as a "
-         "candidate, as likely", "decision"),
     # step 5, in episodes only
     Rule("had_it_been_done", D, "had_it_been_done", _none, "returns None",
          "an instruction is read against the histories an unanswered question leaves, each as likely",

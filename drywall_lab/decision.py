@@ -12,9 +12,7 @@ action history, and decides in one step:
    candidate for the other meaning, as likely as the one the rules took; a reading that offers two things with
    "or" (``Interpretation.alternatives``) is a candidate for each command offered, each as likely; a reading that
    takes the default placement while a word saying the centre line before a word for the stud stands untagged
-   ("centred over the first framing member"; ``unread_centre``) is a candidate on the centre line too, as likely,
-   and a reading that lays the panel in a row while a word saying it stands is left untagged ("stand it upright ...
-   bottom row of wall B this afternoon"; ``unread_upright``) is a candidate upright too, as likely.
+   ("centred over the first framing member"; ``unread_centre``) is a candidate on the centre line too, as likely.
    The probability the k best leave over (1 minus their sum) is one more candidate, "none of these". (Features for
    the first three kinds, and one for the centre line, fitted, came out at weight 0: they were dropped.)
 2. **One score each**, the tagger's log-probability plus weighted features of how the words support the reading::
@@ -388,34 +386,6 @@ def unread_centre(outcome: Outcome, words: Sequence[str], tags: Sequence[str]) -
     return None
 
 
-#: Words that say a panel stands upright: said of the placement, not of a stud ("stand it upright", "standing").
-UPRIGHT_WORDS = frozenset({"upright", "vertical", "vertically", "standing", "plumb", "portrait"})
-#: Words before "upright" that make it a stud ("the third upright", "each upright"), and after it ("upright 500104",
-#: "upright from the left").
-_UPRIGHT_NOUN_BEFORE = frozenset({"the", "a", "an", "that", "this", "each", "every", "next", "same", "last", "first",
-                                  "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth", "tenth",
-                                  "eleventh", "twelfth", "thirteenth", "other", "another", "one", "previous", "end"})
-_UPRIGHT_NOUN_AFTER = frozenset({"from", "of", "in", "number", "no", "id", "marked", "tagged", "stud", "post", "to"})
-
-
-def unread_upright(outcome: Outcome, words: Sequence[str], tags: Sequence[str]) -> Outcome | None:
-    """The command upright on the stud's left line, where a reading lays the panel flat in a row while a word that
-    says it stands ("stand it upright", "standing", "vertical") is left untagged, said of the panel and not of a stud
-    ("the third upright from the left") and not after a negation: the row words may be an aside's ("the bottom row
-    of wall B is for this afternoon"), the class the issue names as the most dangerous. None otherwise."""
-    if outcome[0] != "command" or outcome[3] not in (Placement.HORIZONTAL_TOP.value,
-                                                     Placement.HORIZONTAL_BOTTOM.value):
-        return None
-    said = [W.normalise(w) for w in words]
-    for k, (w, t) in enumerate(zip(said, tags)):
-        before, after = said[k - 1] if k else "", said[k + 1] if k + 1 < len(said) else ""
-        if t == "O" and w in UPRIGHT_WORDS and before not in _UPRIGHT_NOUN_BEFORE and not before.isdigit() \
-                and after not in _UPRIGHT_NOUN_AFTER and not after.isdigit() \
-                and not NEGATIONS & set(said[max(0, k - CENTRE_REACH):k]):
-            return (*outcome[:3], Placement.VERTICAL_LEFT.value)
-    return None
-
-
 # --- step 1: the candidates and their features ---------------------------------------------------------------
 _INDEX = {name: i for i, name in enumerate(FEATURES)}
 
@@ -450,9 +420,9 @@ def reading_candidates(words: Sequence[str], reading: Reading, history: ActionHi
     if actual is not None and not _feasible(actual, outcome):
         # the worker builds on a step not carried out: a question, not a misreading the site refuses
         return [Candidate(("refusal", "unclear"), _features(**base), reading, assumes)]
-    centre = (unread_centre(outcome, words, tags) or unread_upright(outcome, words, tags)) if doubt_default else None
+    centre = unread_centre(outcome, words, tags) if doubt_default else None
     if centre is not None and _feasible(history, centre) and (actual is None or _feasible(actual, centre)):
-        # the centre line (or upright) too, as likely as the default (or the row)
+        # the centre line too, as likely as the default
         return [Candidate(outcome, _features(**base), reading, assumes),
                 Candidate(centre, _features(**base), reading, assumes)]
     two = two_meanings(outcome, words, tags, history)

@@ -561,18 +561,3 @@ def test_a_default_placement_beside_an_untagged_centre_word_is_a_question():
     assert decide_tags(words, tags, TAGS, ActionHistory()).action == "act"
     negated = _wt("a full/dim one , not centred on the first/St_loc1 stud")  # taken back by "not"
     assert decide(negated[0], [(negated[1], math.log(0.99))], _sure(negated[1]), TAGS, ActionHistory()).action == "act"
-
-
-def test_a_row_beside_an_untagged_word_saying_the_panel_stands_is_a_question():
-    """``unread_upright``: a reading that lays the panel in a row while "upright" said of the panel stands untagged
-    (the row words an aside's) weighs the panel upright as much: the robot asks which; gold tags act; "upright" as a
-    stud ("the third upright") is no such word."""
-    words, tags = _wt("the full/dim one , stand it upright on 500105/ID_stud . the bottom/Hr_btm row/Hr_btm of the "
-                      "other wall is for later")
-    d = decide(words, [(tags, math.log(0.99))], _sure(tags), TAGS, ActionHistory())
-    assert d.action == "ask"
-    assert set(d.options) == {("command", "500320", "500105", "horizontal_bottom"),
-                              ("command", "500320", "500105", "vertical_left")}
-    assert decide_tags(words, tags, TAGS, ActionHistory()).action == "act"
-    noun = _wt("the full/dim one in the bottom/Hr_btm row/Hr_btm from the third/St_loc1 upright")
-    assert decide(noun[0], [(noun[1], math.log(0.99))], _sure(noun[1]), TAGS, ActionHistory()).action == "act"

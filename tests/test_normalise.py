@@ -418,7 +418,7 @@ def test_an_emails_header_quoted_lines_and_sign_off_are_dropped(said, read):
 
 
 @pytest.mark.parametrize("said, read", [
-    ("MIKE: the full sheet on 500104, centre line. DAVE: nah, 500103. MIKE: ok.", "the full sheet on 500103 centre line ok"),
+    ("MIKE: the full sheet on 500104, centre line. DAVE: nah, 500103. MIKE: ok.", "the full sheet on 500103 centre line"),
     ("Ana: 2x8 in the top row. Sam Ortiz: nope, wrong one, bottom", "2x8 in the bottom row"),
     ("Note: put the 2x8 on 500104. Also: centre line", "Note put the 2x8 on 500104 Also centre line"),  # notes
     ("Kev: put the 2x8 on 500104", "Kev put the 2x8 on 500104"),  # one label alone is no conversation
@@ -434,3 +434,15 @@ def test_an_id_with_a_case_ending_is_read_as_the_id(said):
 
 def test_an_ids_english_possessive_is_no_case_ending():
     assert N.normalise_text("500100's covered") == "500100's covered"
+
+
+@pytest.mark.parametrize("said, read", [
+    ("MIKE: the full sheet on 500104, centre line. DAVE: nah, 500103. MIKE: yeah fair, 500103.",
+     "the full sheet on 500103 centre line"),
+    ("DAVE: the 2x8, flat, top row, from 500106. MIKE: top row, yep.", "the 2x8 flat top row from 500106"),
+    ("MIKE: the 2x8 on 500104. DAVE: uh, copy, on it.", "the 2x8 on 500104"),
+    # a turn that says something new stays
+    ("MIKE: the 2x8 on 500104. DAVE: yep, centre line.", "the 2x8 on 500104 yep centre line"),
+])
+def test_a_turn_that_only_agrees_or_says_a_value_again_is_dropped(said, read):
+    assert N.normalise_text(said) == read

@@ -245,12 +245,15 @@ def _form_key(form: str, language: str) -> tuple[str, ...]:
 Step = Callable[[list[Piece], list[Change]], list[Piece]]
 
 
-def _read_as(words: Sequence[str], said: tuple[int, ...], last: Piece, roles: Sequence[str] = ()) -> list[Piece]:
+def _read_as(words: Sequence[str], said: tuple[int, ...], last: Piece, roles: Sequence[str] = (),
+             first: Piece | None = None) -> list[Piece]:
     """The pieces for ``words``, read in place of a span of the worker's words (``said``) whose last piece is
-    ``last``: the last word keeps its break and its pause; ``roles`` as in ``Piece.role``."""
+    ``last`` (and first ``first``, if not ``last``): the last word keeps its break and its pause, the first whether
+    it starts a speaker's turn; ``roles`` as in ``Piece.role``."""
     end = len(words) - 1
+    turn = (first or last).turn
     return [Piece(w, said, last.broken_off and k == end, last.paused and k == end, roles[k] if roles else "",
-                  stopped=last.stopped and k == end) for k, w in enumerate(words)]
+                  stopped=last.stopped and k == end, turn=turn and k == 0) for k, w in enumerate(words)]
 
 
 def _text(pieces: Sequence[Piece], said: Sequence[str]) -> str:
@@ -340,7 +343,7 @@ def read_offsets(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
         roles = ["", "", "", "", "O", *("O" if w in ("the", "stud") else "anchor" for w in named)]
         span = pieces[i:i + n]
         changes.append(Change("offset", " ".join(p.word for p in span), " ".join(words)))
-        out += _read_as(words, tuple(k for p in span for k in p.said), span[-1], roles)
+        out += _read_as(words, tuple(k for p in span for k in p.said), span[-1], roles, span[0])
         i += n
     return out
 
@@ -429,7 +432,7 @@ def translate_code_switch(pieces: list[Piece], changes: list[Change],
         n = len(key)
         span, reading = pieces[i:i + n], table[key]
         changes.append(Change("code switch", " ".join(p.word for p in span), " ".join(reading)))
-        out += _read_as(reading, tuple(k for p in span for k in p.said), span[-1])
+        out += _read_as(reading, tuple(k for p in span for k in p.said), span[-1], first=span[0])
         i += n
     return out
 
@@ -498,6 +501,8 @@ def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
             changes.append(Change("filler", " ".join(p.word for p in pieces[i:i + n]), ""))
             if out:  # a filler is a pause ("500101 er 500100, sorry"); a word broken off before one stays so
                 out[-1] = replace(out[-1], broken_off=out[-1].broken_off or pieces[i + n - 1].broken_off, paused=True)
+            if pieces[i].turn and i + n < len(pieces):  # "DAVE: uh, 500106": the turn starts after the filler
+                pieces[i + n] = replace(pieces[i + n], turn=True)
             i += n
             continue
         out.append(pieces[i])
@@ -660,7 +665,7 @@ def _id_piece(run: Sequence[Piece], digits: str, changes: list[Change], also: Se
     if len(words) > 1 or words[0].word != digits:
         changes.append(Change("id", " ".join(p.word for p in words), digits))
     return Piece(digits, tuple(s for p in words for s in p.said), words[-1].broken_off, words[-1].paused,
-                 words[0].role, stopped=words[-1].stopped)
+                 words[0].role, stopped=words[-1].stopped, turn=words[0].turn)
 
 
 def read_ids(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
@@ -1297,6 +1302,31 @@ def resolve_late_repairs(pieces: list[Piece], changes: list[Change]) -> list[Pie
     return pieces
 
 
+#: Words a speaker agrees with, in a turn of a conversation that only takes up what was said ("yeah fair, 500103").
+AGREEMENT_WORDS = frozenset({"yep", "yeah", "yes", "yup", "ok", "okay", "k", "fair", "enough", "right", "sweet", "copy",
+                             "go", "then", "cool", "sure", "good", "done", "alright", "aye", "roger", "that's", "it",
+                             "on", "mate", "too", "sounds", "works", "got"})
+
+
+def drop_echo_turns(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """In a conversation copied in (``drop_speaker_labels``), a later turn that only agrees ("yep.", "copy, on it")
+    or says again a value already said ("MIKE: yeah fair, 500103.", "ok, left then", "top row, yep") is dropped: it
+    adds nothing to the command, and a value said twice reads as two. Runs after ``resolve_late_repairs``, so the
+    value a turn takes up is the one meant."""
+    starts = [k for k, p in enumerate(pieces) if p.turn]
+    if len(starts) < 2:
+        return pieces
+    drop: set[int] = set()
+    for a, b in zip(starts[1:], [*starts[2:], len(pieces)]):
+        said_before = {p.word.lower() for p in pieces[:a]}
+        turn = pieces[a:b]
+        if all(p.word.lower() in AGREEMENT_WORDS or ((_value_kind(p.word) or p.word.lower() in _VALUE_NOUNS)
+                                                      and p.word.lower() in said_before) for p in turn):
+            changes.append(Change("echo", " ".join(p.word for p in turn), ""))
+            drop.update(range(a, b))
+    return [p for k, p in enumerate(pieces) if k not in drop]
+
+
 # --- a table pasted from a spreadsheet ----------------------------------------------------------------------
 #: What separates a table's cells inside one typed word ("1;500320;500100", "qty,size,stack", "line|panel").
 _INNER_CELLS = re.compile(r"[;,|]")
@@ -1408,7 +1438,7 @@ def read_tables(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 #: The front end's steps, in order.
 STEPS: tuple[Step, ...] = (drop_email_frame, drop_chat_stamps, drop_speaker_labels, read_tables, split_fields, read_offsets, translate_code_switch, expand_shorthand,
                            drop_fillers, read_ids, read_star_corrections, resolve_value_repairs, resolve_late_repairs,
-                           resolve_false_starts, anchor_last, metric_sizes, singular_sizes)
+                           drop_echo_turns, resolve_false_starts, anchor_last, metric_sizes, singular_sizes)
 
 
 #: Written labels that only introduce the number after them ("stud no. 500104"); their full stop is what tells them

@@ -1105,8 +1105,11 @@ def crew_crosstalk(ch: Chooser, sentences: Sentences) -> Sentences:
              and (other := _taken_back(rng, tok)) is not None]
     label = lambda who: Token(who + ":", "O", "O")  # noqa: E731
     stop = Token(".", None, None)
-    if not spots or not ch.punctuated or not ch.chance(0.7):  # without its full stops, no turn is told apart
+
+    def acknowledged() -> Sentences:  # the other speaker only acknowledges the instruction
         return [[label(a), *body, stop, label(b), *_untagged(rng.choice(ACKNOWLEDGED).rstrip("."))]]
+    if not spots or not ch.punctuated or not ch.chance(0.7):  # without its full stops, no turn is told apart
+        return acknowledged()
     i, other = rng.choice(spots)
     meant = body[i]
     said = [*body[:i], Token(other, "O", "O"), *body[i + 1:]]
@@ -1116,9 +1119,7 @@ def crew_crosstalk(ch: Chooser, sentences: Sentences) -> Sentences:
     taken_up = rng.choice(TAKEN_UP).rstrip(".")
     if taken_up:
         out += [stop, label(a), *_untagged(taken_up.replace("{b}", meant.word))]
-    if not reads_alike([out], [body], other):  # a form not read back: the other speaker only acknowledges it
-        return [[label(a), *body, stop, label(b), *_untagged(rng.choice(ACKNOWLEDGED).rstrip("."))]]
-    return [out]
+    return [out] if reads_alike([out], [body], other) else acknowledged()  # a form not read back: acknowledged
 
 
 def _labels_first(sentence: Phrase, glue: str) -> Phrase:
@@ -1241,20 +1242,6 @@ def value_repairs(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
-_ID = re.compile(r"^500\d{3}$")
-
-
-def _same_kind(word: str) -> set[str]:
-    """The words that name a value of ``word``'s kind (a side, a row; for an id or an ordinal, the ordinals and
-    "500", standing for any id): none of them may come between a value and its late repair."""
-    low = word.lower()
-    if low in _OTHER_SIDE:
-        return set(_OTHER_SIDE)
-    if low in _OTHER_ROW:
-        return set(_OTHER_ROW)
-    return {"500", *ORDINAL_WORDS.values(), *ORDINAL_DIGITS.values()}
-
-
 def reads_alike(new: Sentences, old: Sentences, gone: str) -> bool:
     """Whether the front end reads the tagged words of ``new`` as those of ``old`` and drops the value ``gone`` (one
     taken back), ``new`` typed as written and in lower case: a channel whose form needs more than its tags to be
@@ -1283,16 +1270,18 @@ def _late_repair(ch: Chooser, sentence: Phrase, i: int, other: str) -> Phrase:
     """``sentence`` with its value at ``i`` taken back late (``LATE_CUES``, ``LATE_CLOSERS``): ``other`` said in its
     place, then a reason or the rest of its clause, the cue and the value meant (with its noun said again, ``O``:
     the noun's tag stays where it was first said). The front end's ``resolve_late_repairs`` puts the value meant back."""
+    from drywall_lab.nlu.normalise import _KIND_GROUPS, _value_kind
+
     meant = sentence[i]
     noun = sentence[i + 1] if i + 1 < len(sentence) and sentence[i + 1].is_word \
         and sentence[i + 1].word.lower() in ("row", "course", "stud", "pile", "stack") else None
     start = i + 1 + (noun is not None)
     end = next((k for k in range(start, len(sentence)) if not sentence[k].is_word), len(sentence))
-    rest = [t.word.lower() for t in sentence[start:end]]
-    kinds = _same_kind(meant.word)
-    said_on = end - start if 1 <= len(rest) <= 5 and not kinds & set(rest) and not (
-        kinds & {"500"} and any(_ID.match(w) for w in rest)) and ch.chance(0.5) else 0
-    closers = [c for c in LATE_CLOSERS if not (_ID.match(meant.word) and "no." in c)]  # "no. 500104": a label
+    kind = _value_kind(meant.word)
+    group = _KIND_GROUPS.get(kind, {kind})  # no value that names the same thing may come between (the front end's)
+    said_on = end - start if 1 <= end - start <= 5 and not any(_value_kind(t.word) in group
+                                                               for t in sentence[start:end]) and ch.chance(0.5) else 0
+    closers = [c for c in LATE_CLOSERS if not (_is_id(meant) and "no." in c)]  # "no. 500104": a label
     form = ch.rng.choice(closers) if said_on and ch.chance(0.7) else \
         ch.rng.choice(LATE_CUES).replace("{r}", ch.rng.choice(REPAIR_REASONS))
     cue = _untagged(form.split("{b}")[0].replace("{a}", ""))

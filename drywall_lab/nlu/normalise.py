@@ -400,10 +400,8 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
 
 def _number_follows(pieces: Sequence[Piece], k: int) -> bool:
     """Whether a number (digits, "#", a digit word) follows piece ``k``: what a label such as "no." introduces."""
-    if k + 1 >= len(pieces):
-        return False
-    word = pieces[k + 1].word.lower()
-    return word[:1].isdigit() or word.startswith("#") or word in DIGIT_WORDS or word in TEEN_WORDS
+    after = pieces[k + 1].word if k + 1 < len(pieces) else ""
+    return _count_follows(pieces, k) or after[:1].isdigit() or after.startswith("#")
 
 
 def translate_code_switch(pieces: list[Piece], changes: list[Change],
@@ -493,6 +491,7 @@ def _starts(pieces: Sequence[Piece], i: int, phrases: tuple[tuple[str, ...], ...
 def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """Fillers ("um", "uh", "you know") are dropped; the word before one is paused after, and a word broken off
     before one stays broken off."""
+    pieces = list(pieces)  # a turn's start moves past a filler dropped: on a copy, the step stays pure
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
@@ -898,8 +897,7 @@ def drop_chat_stamps(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
-        starts_line = i == 0 or pieces[i].cell[0] != pieces[i - 1].cell[0]
-        n = _stamp_at(pieces, i) if starts_line else 0
+        n = _stamp_at(pieces, i) if _starts_line(pieces, i) else 0
         if n:
             changes.append(Change("chat header", " ".join(p.word for p in pieces[i:i + n]), ""))
             i += n
@@ -915,14 +913,13 @@ EMAIL_HEADERS = frozenset({"subject", "re", "fwd", "fw", "cc", "bcc"})
 #: Words that close an e-mail, on a line of their own before the sender's name.
 EMAIL_CLOSINGS = frozenset({"thanks", "thank", "cheers", "regards", "best", "rgds", "thx", "ta", "sincerely"})
 _PHONE = re.compile(r"^\+?\d{2,4}[-.]\d{3,4}(?:[-.]\d{3,4})?$|\w@\w")
-_INITIAL = re.compile(r"^[A-Z]$")
 
 
 def _lines(pieces: Sequence[Piece]) -> list[list[int]]:
     """The indices of ``pieces`` by the line of the worker's text they stand on."""
     out: list[list[int]] = []
-    for k, p in enumerate(pieces):
-        if not out or p.cell[0] != pieces[out[-1][-1]].cell[0]:
+    for k in range(len(pieces)):
+        if _starts_line(pieces, k):
             out.append([])
         out[-1].append(k)
     return out
@@ -991,9 +988,14 @@ def _speaker_at(pieces: Sequence[Piece], k: int) -> int:
     return 0
 
 
+def _starts_line(pieces: Sequence[Piece], k: int) -> bool:
+    """Whether piece ``k`` is the first of a line of the worker's text."""
+    return k == 0 or pieces[k].cell[0] != pieces[k - 1].cell[0]
+
+
 def _turn_starts(pieces: Sequence[Piece], k: int) -> bool:
     """Whether a turn may start at ``k``: the text's start, a new line, after a full stop."""
-    return k == 0 or pieces[k].cell[0] != pieces[k - 1].cell[0] or pieces[k - 1].stopped
+    return _starts_line(pieces, k) or pieces[k - 1].stopped
 
 
 def drop_speaker_labels(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
@@ -1009,6 +1011,7 @@ def drop_speaker_labels(pieces: list[Piece], changes: list[Change]) -> list[Piec
     starts = [(k, n) for k, n in starts if not stopped or _turn_starts(pieces, k)]
     if len(starts) < 2:
         return pieces
+    pieces = list(pieces)  # the turns are marked on a copy: the step stays pure
     out: list[Piece] = []
     k = 0
     for start, n in starts:
@@ -1259,6 +1262,10 @@ def _late_repair(pieces: Sequence[Piece]) -> tuple[int, int, int, int] | None:
         while (more := _starts(pieces, d, REPAIR_CUES)):
             d += more  # "no wait", "nah sorry"
         plain_no = d == c + 1 and pieces[c].word.lower() == "no" and not (pieces[c].paused or pieces[c].stopped)
+        if pieces[c].turn:  # another speaker overrules a value anywhere in the turn before
+            reach = next((k for k in range(c - 1, -1, -1) if pieces[k].turn), 0) - 1
+        else:
+            reach = max(-1, c - 2 - LATE_REACH)
         for e in range(d, min(len(pieces), d + REASON_REACH + 1)):
             if e > d and (plain_no or not (pieces[e - 1].paused or pieces[e - 1].stopped)):
                 continue  # a reason ends with a pause before the value meant; "no gaps, ..." is no cue
@@ -1271,8 +1278,6 @@ def _late_repair(pieces: Sequence[Piece]) -> tuple[int, int, int, int] | None:
             if any(_value_kind(p.word) for p in pieces[d:e]):
                 break  # the reason holds a value of its own: not a repair read here
             group = _KIND_GROUPS.get(kind, {kind})
-            turn = next((k for k in range(c - 1, -1, -1) if pieces[k].turn), 0)  # where the turn before starts
-            reach = turn - 1 if pieces[c].turn else max(-1, c - 2 - LATE_REACH)  # another speaker overrules a value
             old = next((k for k in range(c - 1, reach, -1) if _value_kind(pieces[k].word) in group), None)
             if old is None or _value_kind(pieces[old].word) != kind or pieces[old].word.lower() == pieces[b].word.lower():
                 break  # the nearest value of its group is of another kind ("500321 at stud 3rd ..., no, 500108")

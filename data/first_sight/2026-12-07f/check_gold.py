@@ -1,0 +1,485 @@
+"""Stand-alone checker for the first-sight set of 2026-12-07f.
+
+Written from ../shared/spec/case-study.md (sections 1, 3, 4 and 5) with the
+2026-12-07e checker's layout as a template; standard library only, it does not
+import drywall_lab.  Every episode is replayed from the fresh site (all nine
+panels stacked, nothing installed, empty history) and the script asserts that
+  - every expected command is feasible: the panel exists and is the top one of
+    its stack, is not on the wall yet, stays inside the wall (x_right <=
+    4.8768 + 0.01905) and shares no positive area with an installed panel
+    (touching edges are allowed);
+  - every expected refusal is for exactly the reason written in the gold:
+      overlap / not_on_top / past_wall / already_installed / empty_stack: the
+        intended command (INTENDED) fails for that reason and for no other
+        (an installed panel is not tested against itself; for empty_stack the
+        stack named has no panel left and the place would be free), and its
+        words name it;
+      unknown_id: the id said (UNKNOWN) is no panel or stud of the site, and
+        any other id said exists;
+      no_history: a back-reference to the last panel (NO_HISTORY) is made
+        while the history is empty, and the stud named exists;
+      no_size_match: the size said (NO_MATCH) is no stack's size either way
+        round, and nothing else in the text names a stack;
+      ambiguous_size: the one length said (AMBIGUOUS) is the length of two
+        sizes, nothing else in the text names a stack, and both readings would
+        be carried out as they stand;
+      undetermined: the panel is named but no stud is (UNDETERMINED): no id,
+        no stud position, no stud relative to the last one;
+      unclear: the words leave two or more commands (UNCLEAR), each of which
+        would be carried out as it stands, and each stud is in the text;
+  - the references that are not ids (REFS: sizes said, size words such as
+    "full" / "整张", "narrow" / "窄的" / "etwat", absolute stacks in English,
+    Chinese, Tagalog and Haitian Creole, "same size" / "same kind" / "一样" /
+    "menm gwosè" as the last panel, the leftmost stud, studs counted from the
+    last stud, "same stud" / "同一根龙骨" / "menm stud") agree with the gold,
+    are backed by a cue word in the text (CUES), and the history-based ones
+    only ever use an accepted command;
+  - asides that name a size, a sheet or a stud that is not this command's
+    (DISTRACTORS: the electrician's boxes, a message to another worker in the
+    same chat, the sheets the new one butts against) are in the text and are
+    taken out before the checks of ids, sizes, size words and placement words;
+  - each command's panel and stud are said or derived, no other id is said as
+    digits, no other size, size word, "narrow" word or stack is left in the
+    text, and the placement words agree with the placement (English, Chinese,
+    Tagalog, Creole; a vertical_left step names no centre line, row or lying
+    flat);
+  - the step after a refusal holds no back-reference word (BACK_REF_WORDS);
+  - instructions.jsonl and gold.jsonl hold the same texts in the same order,
+    ids fo01..fo10, 4 to 7 steps an episode, one voice an episode, five
+    voices of two episodes each.
+usage: python3 check_gold.py [GOLD.jsonl]   (default: gold.jsonl beside this file)
+"""
+import json
+import pathlib
+import re
+import sys
+
+HERE = pathlib.Path(__file__).resolve().parent
+H = 2.4384
+WALL_END = 4.8768 + 0.01905
+EPS = 1e-9
+SIZES = {"left": (1.2192, 2.4384), "middle": (0.6096, 2.4384), "right": (1.2192, 1.8288)}
+SIZE_FT = {"left": (4, 8), "middle": (2, 8), "right": (4, 6)}
+STACK_ORDER = ("left", "middle", "right")
+FRESH = {"left": ["500300", "500310", "500320"],      # bottom -> top
+         "middle": ["500301", "500311", "500321"],
+         "right": ["500302", "500312", "500322"]}
+STACK_OF = {pid: s for s, ids in FRESH.items() for pid in ids}
+STUDS = {str(500100 + i): i for i in range(13)}
+PLACEMENTS = ("vertical_left", "vertical_middle", "horizontal_top", "horizontal_bottom")
+REASONS = ("overlap", "past_wall", "not_on_top", "already_installed", "empty_stack",
+           "unknown_id", "no_history", "off_end", "no_size_match", "ambiguous_size",
+           "unclear", "undetermined")
+VOICES = ("taper_finisher", "mandarin_wechat", "taglish", "electrician_covering", "kreyol_switch")
+
+# Refused steps -------------------------------------------------------------
+INTENDED = {   # what the worker meant, for refusals that depend on the site
+    ("fo01", 3): ("500312", "500108", "horizontal_top"),    # flat 4x6 from 500108 ends at x = 5.061
+    ("fo02", 2): ("500301", "500106", "vertical_middle"),   # 500301 is the bottom of the middle stack
+    ("fo03", 2): ("500320", "500109", "vertical_middle"),   # 500320 went up at step 0 (wrong line pasted)
+    ("fo06", 3): (None, "500106", "vertical_middle"),       # a fourth 2x8: the middle stack is empty
+    ("fo09", 4): ("500322", "500107", "vertical_left"),     # 4x6 on 500107 runs into the 2x8 on the centre of 500106
+}
+INTENDED_REFS = {
+    ("fo01", 3): {"size": (4, 6)},
+    ("fo06", 3): {"size": (2, 8)},
+    ("fo09", 4): {"size": (4, 6)},
+}
+UNKNOWN = {("fo07", 4): ("500190", set())}      # (unknown id said, the other ids said): 500109 transposed
+NO_HISTORY = {("fo09", 0): ("menm kalite fèy ak dènye a", "500100")}   # "the same kind as the last one" (yesterday's)
+NO_MATCH = {("fo04", 2): (4, 10)}               # there is no 4x10 on this site
+AMBIGUOUS = {("fo10", 2): (8, "uit pye", "500107", "vertical_middle")}   # "eight-foot sheet": 4x8 and 2x8
+UNDETERMINED = {("fo05", 3): "right",           # "diyan" (there): pointed, no stud said
+                ("fo08", 2): "right"}           # "the stud where my 4-square box is"
+UNCLEAR = {("fo07", 2): [("500322", "500106", "vertical_left"),
+                         ("500322", "500107", "vertical_left")]}   # 500106 or 500107, left open
+
+DISTRACTORS = {   # asides naming a size, a sheet or a stud that is not this command's
+    ("fo01", 2): ["butted up tight to the full sheet"],              # the sheet it butts against
+    ("fo03", 4): ["@小李 下午把那二十张4x8搬上二楼。"],                  # @Xiao Li: take the twenty 4x8s up to floor 2 this afternoon
+    ("fo07", 1): ["I've got a two-gang box in that bay at 48 inches"],
+    ("fo07", 6): ["over those two 4x6s"],                            # the sheets it rests on
+    ("fo08", 2): ["my 4-square box"],
+}
+
+REFS = {
+    ("fo01", 0): {"dim": "full"},
+    ("fo01", 1): {"same_size_as_prev": True, "stud_rel_prev": 0},
+    ("fo01", 2): {"size": (4, 6)},
+    ("fo01", 4): {"size": (4, 6)},
+    ("fo02", 0): {"dim": "full"},
+    ("fo02", 1): {"dim": "full", "stud_rel_prev": 3},
+    ("fo02", 3): {"size": (2, 8), "stack": "middle"},
+    ("fo02", 4): {"size": (4, 6)},
+    ("fo03", 1): {"same_size_as_prev": True, "stud_rel_prev": 3},
+    ("fo03", 4): {"stack": "middle", "desc": "narrow"},
+    ("fo04", 0): {"dim": "full", "size": (4, 8), "stud_abs": 0},
+    ("fo04", 1): {"same_size_as_prev": True, "stud_rel_prev": 0},
+    ("fo04", 3): {"size": (4, 6), "stack": "right"},
+    ("fo04", 4): {"same_size_as_prev": True, "stud_rel_prev": 3},
+    ("fo04", 5): {"stack": "middle", "desc": "narrow"},
+    ("fo05", 0): {"dim": "full"},
+    ("fo05", 1): {"dim": "full", "stud_rel_prev": -3},
+    ("fo05", 2): {"size": (2, 8), "stack": "middle"},
+    ("fo05", 4): {"size": (4, 6)},
+    ("fo06", 0): {"size": (2, 8), "stack": "middle"},
+    ("fo06", 1): {"size": (2, 8)},
+    ("fo06", 2): {"size": (2, 8)},
+    ("fo06", 4): {"dim": "full"},
+    ("fo06", 5): {"size": (4, 6), "stack": "right"},
+    ("fo07", 1): {"same_size_as_prev": True},
+    ("fo07", 3): {"size": (4, 6)},
+    ("fo07", 5): {"size": (4, 6)},
+    ("fo07", 6): {"size": (2, 8)},
+    ("fo08", 0): {"dim": "full"},
+    ("fo08", 1): {"dim": "full", "stud_rel_prev": 0},
+    ("fo08", 3): {"size": (4, 6)},
+    ("fo08", 4): {"size": (4, 6)},
+    ("fo09", 1): {"size": (4, 8), "stack": "left"},
+    ("fo09", 2): {"same_size_as_prev": True, "stud_rel_prev": 3},
+    ("fo09", 3): {"stack": "middle", "desc": "narrow"},
+    ("fo09", 5): {"size": (4, 6)},
+    ("fo10", 0): {"size": (4, 6)},
+    ("fo10", 1): {"size": (4, 8), "stud_rel_prev": 0},
+    ("fo10", 3): {"desc": "narrow"},
+    ("fo10", 4): {"size": (4, 8)},
+}
+PANEL_KEYS = ("size", "dim", "desc", "stack", "same_size_as_prev")
+STUD_KEYS = ("stud_abs", "stud_rel_prev")
+HISTORY_KEYS = ("same_size_as_prev", "stud_rel_prev")
+
+# Cue words that must back each reference in the text ------------------------
+NUM = {3: ("3", "three", "三", "tatlong", "twa")}
+CUES = {
+    "dim": ("full", "整张"),
+    "desc": ("narrow", "窄的", "etwat"),
+    "stack": {"left": ("left stack", "左边那摞", "pil ki agoch"),
+              "middle": ("middle stack", "中间那摞", "gitnang pile", "pil nan mitan"),
+              "right": ("right stack", "右边那摞", "kanang pile", "pil ki adwat")},
+    "same_size_as_prev": ("same size", "same kind", "一样", "menm gwosè"),
+    "stud_rel_same": ("same stud", "同一根龙骨", "menm stud"),
+    "dir": {1: ("right of that one", "往右", "pakanan", "adwat"),
+            -1: ("left of that one", "往左", "pakaliwa", "agoch")},
+    "anchor": ("that one", "刚才那根龙骨", "nauna", "dènye a"),      # the last stud
+    "stud_abs": {0: ("最左边那根",)},
+}
+
+BACK_REF_WORDS = ("previous", "last", "same", "again", "that one", "of that", "from that",
+                  "from there", "another", "other", "before", "too", "one more", "as well",
+                  "above", "under it", "on top of it", "it again", "just",
+                  # Chinese
+                  "上一张", "一样", "同一根", "刚才", "再", "也", "还",
+                  # Tagalog
+                  "pareho", "kapareho", "ulit", "isa pa", "isa pang", "nauna", "huli", "din", "rin",
+                  # Haitian Creole
+                  "menm", "dènye", "ankò", "tou", "lòt")
+TOP_PHRASES = ("top row", "上排", "ranje anlè")
+BOTTOM_PHRASES = ("bottom row", "下排", "ranje anba")
+CENTRE_WORDS = ("centre", "center", "中线", "gitna ng stud", "mitan stud")
+FLAT_WORDS = ("flat", "lay", "laid", "lying", "horizontal", "row", "横着", "排",
+              "pahiga", "nakahiga", "kouche", "ranje")
+WORDNUM = {"two": 2, "four": 4, "six": 6, "eight": 8, "ten": 10}
+# a word boundary: no Latin letter or digit either side (CJK text has no spaces)
+NB = r"0-9A-Za-z_'\u00C0-\u024F"
+
+
+def word_in(w, t):
+    return re.search(r"(?<![" + NB + r"])" + re.escape(w) + r"(?![" + NB + r"])", t)
+
+
+def has(words, t):
+    return any(word_in(w, t) for w in words)
+
+
+def stack_for_size(a, b):
+    hits = [s for s, wl in SIZE_FT.items() if wl == (a, b)]
+    return hits or [s for s, wl in SIZE_FT.items() if wl == (b, a)]
+
+
+def stacks_for_length(n):
+    return [s for s, (_, l) in SIZE_FT.items() if l == n]
+
+
+def sizes_said(t):
+    """Every 'A x B' / 'A by B' / 'A-by-B' in the (lower-case) text, digits or words."""
+    n = r"(\d+|two|four|six|eight|ten)"
+    out = set()
+    for a, b in re.findall(r"(?<![" + NB + r"/])" + n + r"\s*(?:x|×|-by-|\s+by\s+)\s*" + n
+                           + r"(?![" + NB + r"])", t):
+        out.add((int(WORDNUM.get(a, a)), int(WORDNUM.get(b, b))))
+    return out
+
+
+def take_out(key, text):
+    """The text with asides taken out."""
+    for phrase in DISTRACTORS.get(key, []):
+        i = text.find(phrase)
+        assert i >= 0, (key, "aside not in text", phrase)
+        text = text[:i] + " " + text[i + len(phrase):]
+    return text
+
+
+def rect(pid, stud, placement, size=None):
+    w, l = size or SIZES[STACK_OF[pid]]
+    c = 0.4064 * STUDS[stud]
+    left = c - 0.01905
+    return {"vertical_left": (left, left + w, 0.0, l),
+            "vertical_middle": (c, c + w, 0.0, l),
+            "horizontal_top": (left, left + l, H - w, H),
+            "horizontal_bottom": (left, left + l, 0.0, w)}[placement]
+
+
+def geometry(wall, r, skip=None):
+    x0, x1, z0, z1 = r
+    out = []
+    if x1 > WALL_END + EPS:
+        out.append("past_wall")
+    if any(min(x1, a1) - max(x0, a0) > EPS and min(z1, b1) - max(z0, b0) > EPS
+           for (a0, a1, b0, b1), p in wall if p != skip):
+        out.append("overlap")
+    return out
+
+
+def problems(state, wall, pid, stud, placement):
+    """Why the command cannot be carried out (empty list: it can)."""
+    if pid not in STACK_OF or stud not in STUDS:
+        return ["unknown_id"]
+    out = []
+    s = STACK_OF[pid]
+    if any(p == pid for _, p in wall):
+        out.append("already_installed")      # not tested against its own place on the wall
+    elif not state[s] or state[s][-1] != pid:
+        out.append("not_on_top")
+    return out + geometry(wall, rect(pid, stud, placement), skip=pid)
+
+
+def check_refs(key, ref, s, stud, last, t):
+    """The references agree with the gold (stack s, stud) and each has its cue word in t (lower case)."""
+    if "size" in ref:
+        assert stack_for_size(*ref["size"]) == [s], (key, ref)
+        assert ref["size"] in sizes_said(t), (key, "size not said", ref["size"])
+    for a, b in sizes_said(t):   # every size left in the text is this panel's
+        assert stack_for_size(a, b) == [s], (key, "another size in the text", (a, b))
+    if "dim" in ref:
+        assert ref["dim"] == "full" and s == "left", (key, ref)
+        assert has(CUES["dim"], t), (key, "size word not said")
+    else:
+        assert not has(CUES["dim"], t), (key, "a size word is left in the text")
+    if "desc" in ref:   # "narrow", "窄的", "etwat": the one size 2 ft wide
+        assert ref["desc"] == "narrow"
+        assert [x for x, (w, _) in SIZE_FT.items() if w == 2] == [s], key
+        assert has(CUES["desc"], t), (key, "narrow not said")
+    else:
+        assert not has(CUES["desc"], t), (key, "a narrow word is left in the text")
+    if "stack" in ref:
+        assert ref["stack"] == s, (key, ref)
+        assert has(CUES["stack"][s], t), (key, "stack not said")
+    for other, cues in CUES["stack"].items():   # no other stack named
+        if other != s:
+            assert not has(cues, t), (key, "another stack named", other)
+    if "same_size_as_prev" in ref:
+        assert last is not None and SIZE_FT[STACK_OF[last[0]]] == SIZE_FT[s], key
+        assert has(CUES["same_size_as_prev"], t), (key, "same size not said")
+    if "stud_rel_prev" in ref:
+        n = ref["stud_rel_prev"]
+        assert last is not None, key
+        assert STUDS[stud] == STUDS[last[1]] + n, key
+        if n == 0:
+            assert has(CUES["stud_rel_same"], t), (key, "same stud not said")
+        else:
+            assert has(CUES["dir"][1 if n > 0 else -1], t), (key, "direction not said")
+            assert has(NUM[abs(n)], t), (key, "count not said")
+            assert has(CUES["anchor"], t), (key, "the last stud is not named as the anchor")
+    if "stud_abs" in ref:
+        assert STUDS[stud] == ref["stud_abs"], key
+        assert has(CUES["stud_abs"][ref["stud_abs"]], t), (key, "stud position not said")
+
+
+def ids_in(text):
+    return re.findall(r"\d{6}", text)
+
+
+def check_words(key, text, pid, stud, pl, ref):
+    """Ids and placement words of a command (text: asides taken out)."""
+    t = text.lower()
+    assert pid is None or pid in text or any(k in ref for k in PANEL_KEYS), (key, "panel not said")
+    assert stud in text or any(k in ref for k in STUD_KEYS), (key, "stud not said")
+    for d in ids_in(text):
+        assert d in (pid, stud), (key, "stray id", d)
+    if pl == "horizontal_top":
+        assert has(TOP_PHRASES, t) and not has(BOTTOM_PHRASES + CENTRE_WORDS, t), key
+    elif pl == "horizontal_bottom":
+        assert has(BOTTOM_PHRASES, t) and not has(TOP_PHRASES + CENTRE_WORDS, t), key
+    elif pl == "vertical_middle":
+        assert has(CENTRE_WORDS, t), (key, "no centre word")
+        assert not has(FLAT_WORDS + TOP_PHRASES + BOTTOM_PHRASES, t), key
+    else:
+        for w in CENTRE_WORDS + TOP_PHRASES + BOTTOM_PHRASES + FLAT_WORDS:
+            assert not word_in(w, t), (key, w)
+
+
+def back_refs(t):
+    return [w for w in BACK_REF_WORDS if word_in(w, t)]
+
+
+def stud_cues(t):
+    cues = CUES["stud_rel_same"] + CUES["dir"][1] + CUES["dir"][-1] + CUES["anchor"] + \
+        sum(CUES["stud_abs"].values(), ()) + ("last stud", "leftmost", "rightmost", "first stud")
+    return [w for w in cues if word_in(w, t)]
+
+
+def names_a_stack(t):
+    return has(CUES["dim"] + CUES["desc"] + sum(CUES["stack"].values(), ()), t) or bool(sizes_said(t))
+
+
+TABLE_OF = {"overlap": INTENDED, "not_on_top": INTENDED, "past_wall": INTENDED,
+            "already_installed": INTENDED, "empty_stack": INTENDED, "unknown_id": UNKNOWN,
+            "no_history": NO_HISTORY, "no_size_match": NO_MATCH, "ambiguous_size": AMBIGUOUS,
+            "undetermined": UNDETERMINED, "unclear": UNCLEAR}
+
+
+def check_refusal(key, why, state, wall, last, text):
+    t = text.lower()
+    assert key in TABLE_OF.get(why, {}), (key, "refusal not worked out for this reason", why)
+    if why in ("overlap", "not_on_top", "past_wall", "already_installed"):
+        pid, stud, pl = INTENDED[key]
+        assert pid is not None, (key, "no panel worked out for", why)
+        iref = INTENDED_REFS.get(key, {})
+        check_refs(key, iref, STACK_OF[pid], stud, last, t)
+        check_words(key, text, pid, stud, pl, iref)
+        if "size" in iref or "stack" in iref:   # said by size: the panel is the top of that stack
+            assert state[STACK_OF[pid]] and state[STACK_OF[pid]][-1] == pid, key
+        got = problems(state, wall, pid, stud, pl)
+        assert got == [why], (key, why, got)
+    elif why == "empty_stack":
+        _, stud, pl = INTENDED[key]
+        iref = INTENDED_REFS.get(key, {})
+        assert "size" in iref and len(stack_for_size(*iref["size"])) == 1, (key, "no stack worked out")
+        s = stack_for_size(*iref["size"])[0]
+        check_refs(key, iref, s, stud, last, t)
+        check_words(key, text, None, stud, pl, iref)
+        assert not state[s], (key, "the stack is not empty", state[s])
+        assert not geometry(wall, rect(FRESH[s][0], stud, pl)), (key, "the place is not free")
+    elif why == "unknown_id":
+        bad, others = UNKNOWN[key]
+        assert bad not in STACK_OF and bad not in STUDS and bad in text, key
+        assert set(ids_in(text)) == {bad} | others, key
+        assert all(o in STACK_OF or o in STUDS for o in others), key
+    elif why == "no_history":
+        phrase, stud = NO_HISTORY[key]
+        assert last is None, (key, "the history is not empty")
+        assert phrase in text and back_refs(t), key
+        assert ids_in(text) == [stud] and stud in STUDS, key
+    elif why == "no_size_match":
+        a, b = NO_MATCH[key]
+        assert sizes_said(t) == {(a, b)}, key
+        assert not stack_for_size(a, b), (key, "the size matches a stack")
+        assert not has(CUES["dim"] + CUES["desc"] + sum(CUES["stack"].values(), ()), t), key
+    elif why == "ambiguous_size":
+        n, phrase, stud, pl = AMBIGUOUS[key]
+        hits = stacks_for_length(n)
+        assert len(hits) >= 2 and phrase in t, (key, hits)
+        assert not sizes_said(t), key
+        assert not has(CUES["dim"] + CUES["desc"] + sum(CUES["stack"].values(), ()), t), key
+        assert ids_in(text) == [stud], key
+        for s in hits:   # each reading would be carried out as it stands
+            assert state[s], (key, s)
+            assert not problems(state, wall, state[s][-1], stud, pl), (key, "a reading fails anyway", s)
+        assert has(CENTRE_WORDS, t) == (pl == "vertical_middle"), key
+    elif why == "undetermined":
+        s = UNDETERMINED[key]
+        assert has(CUES["stack"][s], t) or [stack_for_size(*ab) for ab in sizes_said(t)] == [[s]], key
+        assert not ids_in(text) and not stud_cues(t), (key, "a stud is named", stud_cues(t))
+    elif why == "unclear":
+        options = UNCLEAR[key]
+        assert len(set(options)) >= 2, key
+        for pid, stud, pl in options:
+            assert not problems(state, wall, pid, stud, pl), (key, "an option fails anyway", pid, stud, pl)
+            assert stud in text, key
+        assert set(ids_in(text)) == {stud for _, stud, _ in options}, key
+    else:
+        raise AssertionError((key, "no check for", why))
+
+
+def main(gold_path=None):
+    inst = [json.loads(l) for l in open(HERE / "instructions.jsonl", encoding="utf-8") if l.strip()]
+    gold = [json.loads(l) for l in open(gold_path or HERE / "gold.jsonl", encoding="utf-8") if l.strip()]
+    by_ep = {}
+    for g in gold:
+        by_ep.setdefault(g["episode"], []).append(g)
+    assert [e["id"] for e in inst] == list(by_ep), "episode order differs"
+    assert [e["id"] for e in inst] == [f"fo{i:02d}" for i in range(1, 11)], "episode ids"
+    texts = {(g["episode"], g["step"]): g["text"] for g in gold}
+    refused = {(g["episode"], g["step"]) for g in gold if "refusal" in g["expect"]}
+    n_ref = 0
+    styles, reasons, placements, eps_per_style = {}, {}, {}, {}
+    history = []
+    for e in inst:
+        ep = e["id"]
+        rows = by_ep[ep]
+        assert set(e) == {"id", "instructions"}, ep
+        assert 4 <= len(rows) <= 7, (ep, len(rows))
+        assert [g["step"] for g in rows] == list(range(len(rows))), ep
+        assert [g["text"] for g in rows] == e["instructions"], ep
+        assert all(set(g) == {"episode", "step", "text", "style", "expect"} for g in rows), ep
+        assert len({g["style"] for g in rows}) == 1 and rows[0]["style"] in VOICES, ep
+        eps_per_style[rows[0]["style"]] = eps_per_style.get(rows[0]["style"], 0) + 1
+        state = {s: list(ids) for s, ids in FRESH.items()}   # fresh site every episode
+        wall = []         # ((x0, x1, z0, z1), pid)
+        last = None       # (pid, stud) of the last accepted command
+        prev_refused = False
+        for g in rows:
+            key = (ep, g["step"])
+            x = g["expect"]
+            styles[g["style"]] = styles.get(g["style"], 0) + 1
+            text = take_out(key, g["text"])
+            t = text.lower()
+            if prev_refused:
+                assert not back_refs(g["text"].lower()), \
+                    (key, "back-reference right after a refusal", back_refs(g["text"].lower()))
+            if "refusal" in x:
+                assert set(x) == {"refusal"}, key
+                n_ref += 1
+                why = x["refusal"]
+                assert why in REASONS, (key, why)
+                reasons[why] = reasons.get(why, 0) + 1
+                check_refusal(key, why, state, wall, last, text)
+                prev_refused = True
+                continue      # a refused step leaves site and history as they were
+            prev_refused = False
+            assert set(x) == {"drywall_id", "stud_id", "placement"}, key
+            pid, stud, pl = x["drywall_id"], x["stud_id"], x["placement"]
+            assert isinstance(pid, str) and isinstance(stud, str) and pl in PLACEMENTS, key
+            assert pid in STACK_OF and stud in STUDS, (key, "unknown id in the gold")
+            assert key in REFS or (pid in text and stud in text), (key, "no REFS")
+            ref = REFS.get(key, {})
+            if "size" in ref or "stack" in ref or "dim" in ref or "desc" in ref or "same_size_as_prev" in ref:
+                assert pid not in text, (key, "panel both named and described")
+            check_refs(key, ref, STACK_OF[pid], stud, last, t)
+            check_words(key, text, pid, stud, pl, ref)
+            p = problems(state, wall, pid, stud, pl)
+            assert not p, (key, x, p)
+            state[STACK_OF[pid]].pop()
+            wall.append((rect(pid, stud, pl), pid))
+            last = (pid, stud)
+            placements[pl] = placements.get(pl, 0) + 1
+            if any(k in ref for k in HISTORY_KEYS):
+                history.append(key)
+    for table in (INTENDED, INTENDED_REFS, UNKNOWN, NO_HISTORY, NO_MATCH, AMBIGUOUS,
+                  UNDETERMINED, UNCLEAR):
+        assert set(table) <= refused, table
+    assert not set(REFS) & refused, "REFS names a refused step"
+    assert set(DISTRACTORS) <= set(texts), "table names a missing step"
+    assert set(eps_per_style.values()) == {2} and len(eps_per_style) == 5, eps_per_style
+    n = len(gold)
+    print(f"episodes={len(inst)} steps={n} refusals={n_ref} commands={n - n_ref}")
+    print("styles:", styles)
+    print("refusals:", reasons)
+    print("placements:", placements)
+    print(f"history-dependent steps={len(history)}:", " ".join(f"{e}/{s}" for e, s in history))
+    print(f"asides={len(DISTRACTORS)}")
+    print("OK")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else None)

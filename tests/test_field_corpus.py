@@ -282,7 +282,27 @@ def test_a_landmark_anchor_expects_a_question_in_the_novel_split_only(committed)
     rows = committed["novel"]
     landmarks = [r for r in rows if FG.C.LANDMARK_ANCHORS in r["channels"]]
     assert len(landmarks) >= 10
-    for row in landmarks:  # the landmark's words are O, and may carry a typo or another language's words
-        assert row["expected"] == FG.UNANCHORED and " of " in f" {' '.join(row['words']).lower()} ", row["id"]
+    for row in landmarks:  # the landmark's words are O, and may carry a typo or another language's words; a table's
+        # cells keep its words without their "of" ("1 | right | halfway")
+        assert row["expected"] == FG.UNANCHORED, row["id"]
+        assert " of " in f" {' '.join(row['words']).lower()} " or "pasted_tables" in row["channels"], row["id"]
         assert not {"Dw_loc2", "St_loc2"} & set(row["tags"]), row["id"]
     assert not any(FG.C.LANDMARK_ANCHORS in r["channels"] for split in ("validation", "test") for r in committed[split])
+
+
+def test_chinese_is_written_without_spaces_where_the_front_end_cuts_it_back_into_the_same_words():
+    assert FG.written_together("竖着装在", "500106") and FG.written_together("500106", "上")
+    assert not FG.written_together("panel", "从")  # a space stays between English and Chinese words
+    # "从" + "左边那摞" would run together into the one form "从左边那摞": written apart, they stay two words
+    assert not FG.written_together("从", "左边那摞")
+
+
+def test_novel_rows_switched_into_chinese_are_typed_without_spaces_and_read_back(committed):
+    from drywall_lab.corpus.io import UNSPACED
+    from drywall_lab.nlu.normalise import normalise
+
+    rows = [r for r in committed["novel"] if UNSPACED.search(r["text"])]
+    assert rows, "no novel row is switched into Chinese or Japanese"
+    assert any(re.search(f"{UNSPACED.pattern}{{2}}", r["text"]) for r in rows)  # characters typed together
+    for r in rows:
+        assert list(normalise(r["text"]).words) == r["words"]

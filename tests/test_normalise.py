@@ -446,3 +446,29 @@ def test_an_ids_english_possessive_is_no_case_ending():
 ])
 def test_a_turn_that_only_agrees_or_says_a_value_again_is_dropped(said, read):
     assert N.normalise_text(said) == read
+
+
+@pytest.mark.parametrize("said, read", [
+    ("500320号板，竖着装在500100龙骨上。", "500320 panel install it upright on 500100 stud"),
+    ("中间那摞拿一张窄的，竖着装在500106上", "the middle stack take a narrow one install it upright on 500106"),
+    ("５００１０４", "500104"),  # full-width digits
+    ("stud ٥٠٠١٠٤، ۵۰۰۱۰۴", "stud 500104 500104"),  # Arabic-Indic digits, the Arabic comma
+    ("500104에", "500104"),  # a Korean particle written on the id
+])
+def test_chinese_typed_without_spaces_other_digits_and_particles_on_ids_are_read(said, read):
+    assert N.normalise_text(said) == read
+
+
+def test_a_script_without_spaces_is_cut_by_the_longest_form_and_where_scripts_meet(tmp_path):
+    lexicon = tmp_path / "lexicon.tsv"
+    lexicon.write_text("左边\tleft\tzh\n左边那摞\tthe left stack\tzh\n从\tfrom\tzh\n龙骨\tstud\tzh\n", encoding="utf-8")
+    assert N.segment_unspaced("从左边那摞", lexicon) == ["从", "左边那摞"]  # the longest form wins
+    assert N.segment_unspaced("从左边拿", lexicon) == ["从", "左边", "拿"]
+    assert N.segment_unspaced("拿走从", lexicon) == ["拿走", "从"]  # characters no form starts stay together
+    assert N.split_unspaced("在500106龙骨上,", lexicon) == ["在", "500106", "龙骨", "上,"]  # a mark stays with its word
+    assert N.split_unspaced("stud#5", lexicon) == ["stud#5"]  # no such script: one word
+
+
+def test_the_workers_words_in_chinese_are_the_words_the_front_end_cut():
+    n = N.normalise("从左边那摞拿一张")
+    assert len(n.said) > 1 and "".join(n.said) == "从左边那摞拿一张"

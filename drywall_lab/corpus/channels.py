@@ -21,7 +21,9 @@ keeping the meaning and carrying every word's tag along:
 - ``openers``: the instruction opened as the next job is ("last thing:", "first off,"), words that name nothing;
 - ``code_switch``: words and phrases of another language or dialect mixed in ("la pila de la izquierda", "cuatro
   por ocho", "der mittlere Stapel", "stand am for stud"), from the same lexicon the front end reads them back with
-  (``data/lexicon/code_switch.tsv``), an id with the language's case ending now and then ("500104'e");
+  (``data/lexicon/code_switch.tsv``), an id with the language's case ending now and then ("500104'e"); Chinese and
+  Japanese are typed without spaces where the front end cuts them back into the same words
+  (``field_generator.written_together``: "装在500106上");
 - ``glued_fields``: typed as a program or a terse form ("stud=500104", "centre_line", "3rd-from-right"), a stud as a
   sum ("prev+2", "500104-1") and a value after its label ("size=same", "row=top");
 - ``value_repairs``: one value said wrongly and taken back by another of its kind ("stud 500101, er, 500100, sorry",
@@ -730,10 +732,11 @@ def code_switch(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
-#: Case endings that languages with cases put on an id, as their speakers type them.
+#: Case endings that languages with cases put on an id, and the particles Korean writes on one, as their speakers type
+#: them.
 CASE_ENDINGS = {"tr": ("'e", "'a", "'ye", "'ya", "'de", "'da", "'den", "'dan", "’e"),
                 "ru": ("-й", "-го", "-му", "-м", "-ом"), "uk": ("-й", "-го", "-му", "-ому"),
-                "pl": ("-ego", "-ym", "-u", "-em")}
+                "pl": ("-ego", "-ym", "-u", "-em"), "ko": ("에", "번", "번에", "에다", "부터")}
 
 
 # --- openers -------------------------------------------------------------------------------------------------

@@ -36,6 +36,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import random
+import re
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
@@ -43,7 +44,7 @@ from typing import Callable
 from drywall_lab.corpus import channels as C
 from drywall_lab.corpus import field_phrases as F
 from drywall_lab.corpus import generator as G
-from drywall_lab.corpus.io import read_jsonl, tokenize, write_jsonl
+from drywall_lab.corpus.io import UNSPACED, read_jsonl, tokenize, unspaced, write_jsonl
 from drywall_lab.corpus.markup import Phrase, Token, parse, plain, tagged
 from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_DIGITS, ORDINAL_WORDS, Chooser
 from drywall_lab.site import DATA_DIR, Site, default_site, size_words
@@ -1092,9 +1093,11 @@ def _read_by_front_end() -> frozenset[str]:
 
 
 def _misspelt(rng: random.Random, word: str) -> str:
-    """A typo in ``word``, or the word as it is where the typo would be a word the front end reads as another."""
+    """A typo in ``word``, or the word as it is where the typo would be a word the front end reads as another, or
+    where the word is typed in a script written without spaces (an input method picks whole words)."""
     typo = _typo(rng, word)
-    return word if typo.lower() in _read_by_front_end() or word.lower() in READ_UNTAGGED else typo
+    return word if typo.lower() in _read_by_front_end() or word.lower() in READ_UNTAGGED or UNSPACED.search(word) \
+        else typo
 
 
 def add_noise(ch: Chooser, sentences: Sentences, spoken: bool) -> Sentences:
@@ -1187,7 +1190,33 @@ def render(ch: Chooser, sentences: Sentences, spoken: bool,
             raise ValueError(f"{w!r} is not one word when tokenized: {clean}")
         return clean[0]
 
-    return G.join_tokens(sentences, keep_punctuation, cased, one_word)
+    sentences = [unspaced_words(sentence) for sentence in sentences]
+    return G.join_tokens(sentences, keep_punctuation, cased, one_word, attach=written_together)
+
+
+def unspaced_words(sentence: Phrase) -> Phrase:
+    """A phrase whose tokens of a script written without spaces are the words the front end cuts them into
+    (``normalise.split_unspaced``), each with its token's tags."""
+    from drywall_lab.nlu.normalise import split_unspaced
+
+    return [Token(part, t.tag, t.coref) if t.is_word else t
+            for t in sentence for part in (split_unspaced(t.word) if t.is_word else [t.word])]
+
+
+def written_together(text: str, word: str) -> bool:
+    """Whether ``word`` is written straight after ``text``, as Chinese and Japanese are typed ("竖着装在500106上"):
+    where a character of such a script meets another or a digit, and the front end would cut the run they make into
+    the same words (``normalise.segment_unspaced``), so that it reads the words the row was written from."""
+    from drywall_lab.nlu.normalise import segment_unspaced
+
+    before, after = text[-1:], word[:1]
+    if not (unspaced(before) and (unspaced(after) or after.isdigit()) or before.isdigit() and unspaced(after)):
+        return False
+    if not (unspaced(before) and unspaced(after)):
+        return True  # a digit: the front end cuts where the scripts meet
+    run = re.search(f"{UNSPACED.pattern}+$", text).group()
+    head = re.match(f"{UNSPACED.pattern}+", word).group()
+    return segment_unspaced(run + head) == segment_unspaced(run) + segment_unspaced(head)
 
 
 def read_through_front_end(said: tuple[str, list[str], list[str], list[str]]) -> tuple[str, list[str], list[str], list[str]]:

@@ -556,10 +556,12 @@ def sentences_for(ch: P.Chooser, meaning: Meaning, n_sentences: int) -> list[Phr
 
 
 def join_tokens(sentences: Iterable[Phrase], keep_punctuation: bool, cased: Callable[[str, bool], str],
-                word_of: Callable[[str], str] = str) -> tuple[str, list[str], list[str], list[str]]:
+                word_of: Callable[[str], str] = str,
+                attach: Callable[[str, str], bool] | None = None) -> tuple[str, list[str], list[str], list[str]]:
     """Text, words, tags and co-reference tags of tokenised sentences: each word written as ``cased(word, whether
     it begins its sentence)`` and read as ``word_of`` that; punctuation glued to the word before it when
-    ``keep_punctuation``, dropped otherwise."""
+    ``keep_punctuation``, dropped otherwise; a word written without a space after the text before it where
+    ``attach(text, word)`` says so (a script written without spaces)."""
     words: list[str] = []
     tags: list[str] = []
     coref: list[str] = []
@@ -576,7 +578,10 @@ def join_tokens(sentences: Iterable[Phrase], keep_punctuation: bool, cased: Call
             words.append(word_of(w))
             tags.append(tok.tag)
             coref.append(tok.coref)
-            pieces.append(w)
+            if attach is not None and pieces and attach(pieces[-1], w):
+                pieces[-1] += w
+            else:
+                pieces.append(w)
     return " ".join(pieces), words, tags, coref
 
 

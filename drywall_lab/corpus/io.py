@@ -15,6 +15,15 @@ SPLITS = ("train", "validation", "test", "novel")
 
 _EDGE_PUNCTUATION = re.compile(r"^[\"'(\[]+|[.,?!;:\"')\]]+$")
 
+#: Characters of scripts written without spaces between words: Chinese characters and Japanese kana. A run of them is
+#: one chunk of text that holds several words (``drywall_lab.nlu.normalise.split_unspaced`` finds them).
+UNSPACED = re.compile(r"[\u3040-\u30ff\u31f0-\u31ff\u3400-\u4dbf\u4e00-\u9fff\uf900-\ufaff\uff66-\uff9f]")
+
+
+def unspaced(char: str) -> bool:
+    """Whether ``char`` belongs to a script written without spaces between words ("板": yes; "b", "5", "ы": no)."""
+    return bool(UNSPACED.fullmatch(char))
+
 
 def tokenize(text: str) -> list[str]:
     """Split an instruction into words the way the corpus does.

@@ -10,7 +10,8 @@ sorry", also late, after a reason or the rest of its clause: "on 500111... nah t
 what comes with a message copied in (a chat message's header, an e-mail's subject line, quoted lines and sign-off,
 the speakers' labels of a conversation, where the next speaker may overrule a value: "MIKE: ... on 500104. DAVE:
 nah, 500103"), an id with a case ending ("500104'e"), a stud written as a sum as a program has it ("stud=prev+2",
-"500104-1"), and words of another language or
+"500104-1"), text in a script written without spaces, cut into words against the lexicon ("竖着装在500106上"),
+and words of another language or
 dialect a crew mixes into English (Spanish, German, French, Portuguese, Polish, West African Pidgin, Jamaican
 Creole, spoken English dialects: "la pila de la izquierda", "cuatro por ocho", "der mittlere Stapel", "stand am for
 stud", "that'n": ``data/lexicon/code_switch.tsv``). The paper's tagger (Sec. 3.1) learns surface forms from its
@@ -39,7 +40,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Sequence
 
-from drywall_lab.corpus.io import tokenize
+from drywall_lab.corpus.io import UNSPACED, tokenize, unspaced
 from drywall_lab.im.trace import TraceStep
 from drywall_lab.site import DATA_DIR
 
@@ -69,9 +70,10 @@ ID_PATTERN = re.compile(r"^500\d{3}$")
 _DIGITS = re.compile(r"^\d+$")
 _SPLIT_ID = re.compile(r"^(\d{3})[-–.,](\d{3})$")
 _MARKED_ID = re.compile(r"^(?:#|no\.?|nr\.?|num\.?)(5\d{5})$", re.I)
-#: An id with a case ending, as languages with cases write one ("500104'e", "500104-го", "500104:een"); not the
+#: An id with a case ending, as languages with cases write one ("500104'e", "500104-го", "500104:een"), or with a
+#: Korean particle written on it ("500104에", "500104번": Hangul, its syllables taken apart by ``fold``); not the
 #: English possessive ("500100's covered": the stud spoken of, not named for this step).
-_CASE_ENDING_ID = re.compile(r"^(5\d{5})(?:['’:-](?!s$)[^\W\d_]{1,4})$")
+_CASE_ENDING_ID = re.compile(r"^(5\d{5})(?:['’:-](?!s$)[^\W\d_]{1,4}|[\u1100-\u11ff]{2,12})$")
 _BROKEN_OFF = re.compile(r"[\w'][-–—]+$")
 _PAUSE = re.compile(r"\w[,;]+$")
 _STOP = re.compile(r"\w[.!?…]+$")
@@ -203,7 +205,7 @@ def read_code_switch(path: Path | str = CODE_SWITCH_PATH) -> tuple[tuple[str, st
 
 #: Languages whose accents tell words apart (Vietnamese tones: "năm" five, "nằm" lying, "bảy" seven, "bay" to fly):
 #: their forms are matched only as written with their accents, never folded.
-ACCENTS_TELL_APART = frozenset({"vi"})
+ACCENTS_TELL_APART = frozenset({"vi", "ja"})
 
 
 def as_written(word: str) -> str:
@@ -1453,17 +1455,76 @@ _LABELS = frozenset({"no.", "nr.", "num.", "no:"})
 _COMMA_FILLERS = frozenset({"like,"})
 
 
+# --- scripts written without spaces (Chinese, Japanese) -----------------------------------------------------
+#: The punctuation of Chinese, Japanese, Arabic-script and Indic text, full-width letters and the decimal digits of
+#: every script ("，", "。", "،", "।", "５００", "٥٠٠", "۵۰۰", "५००"), read as the ASCII marks and characters they stand
+#: for, a space after a mark: "板，竖着" is "板, 竖着".
+_FULL_WIDTH = {**{ord(wide): narrow for wide, narrow in zip("，、。；：！？（）「」『』【】،؛؟।",
+                                                          [", ", ", ", ". ", "; ", ": ", "! ", "? ", " (", ") ", ' "',
+                                                           '" ', ' "', '" ', " (", ") ", ", ", "; ", "? ", ". "])},
+               **{code: chr(code - 0xFEE0) for code in range(0xFF21, 0xFF5B) if chr(code - 0xFEE0).isalpha()},
+               **{code: str(unicodedata.digit(chr(code))) for code in range(0x0660, 0x10000)
+                  if unicodedata.category(chr(code)) == "Nd"}}
+
+
+@lru_cache(maxsize=4)
+def _unspaced_forms(lexicon: Path | str = CODE_SWITCH_PATH) -> tuple[frozenset[str], int]:
+    """The code-switch lexicon's forms written in a script without spaces, and the longest one's length."""
+    forms = frozenset(form for form, _, _ in read_code_switch(lexicon) if all(unspaced(c) for c in form))
+    return forms, max(map(len, forms), default=1)
+
+
+def segment_unspaced(run: str, lexicon: Path | str = CODE_SWITCH_PATH) -> list[str]:
+    """A run of a script written without spaces cut into words by forward maximum matching against the code-switch
+    lexicon's forms (the longest form starting at each place; Wong and Chan, COLING 1996): "从左边那摞拿" -> "从",
+    "左边那摞", "拿" where those are forms. Characters that start no form stay together as one word."""
+    forms, longest = _unspaced_forms(lexicon)
+    out: list[str] = []
+    unknown = ""
+    i = 0
+    while i < len(run):
+        n = next((n for n in range(min(longest, len(run) - i), 0, -1) if run[i:i + n] in forms), 0)
+        if not n:
+            unknown += run[i]
+            i += 1
+            continue
+        out += [unknown] if unknown else []
+        unknown = ""
+        out.append(run[i:i + n])
+        i += n
+    return out + ([unknown] if unknown else [])
+
+
+def split_unspaced(chunk: str, lexicon: Path | str = CODE_SWITCH_PATH) -> list[str]:
+    """A chunk of text without white space cut where a script written without spaces meets another ("在500106上" ->
+    "在", "500106", "上") and within each run of that script (``segment_unspaced``); a mark stays with the word
+    before it ("上," -> "上,"). A chunk with no such script is one word."""
+    if not UNSPACED.search(chunk):
+        return [chunk]
+    out: list[str] = []
+    for part in re.findall(f"{UNSPACED.pattern}+|(?:(?!{UNSPACED.pattern}).)+", chunk):
+        if unspaced(part[0]):
+            out += segment_unspaced(part, lexicon)
+        elif out and not any(c.isalnum() for c in part):
+            out[-1] += part
+        else:
+            out.append(part)
+    return out
+
+
 def _pieces(text: str) -> tuple[list[str], list[Piece]]:
-    """The worker's words (as ``corpus.io.tokenize`` splits them) and a piece for each: a word broken off with a
-    dash loses the dash; a label's full stop is kept for the lexicon."""
+    """The worker's words (as ``corpus.io.tokenize`` splits them, a script written without spaces cut into words by
+    ``split_unspaced``) and a piece for each: a word broken off with a dash loses the dash; a label's full stop is
+    kept for the lexicon."""
     said: list[str] = []
     pieces: list[Piece] = []
+    text = text.translate(_FULL_WIDTH)
     for line, text_line in enumerate(text.split("\n")):
         cell = 0
         quoted = text_line.lstrip().startswith(">")
         for k, between_tabs in enumerate(text_line.split("\t")):
             cell += k > 0
-            for raw in between_tabs.split():
+            for raw in (word for chunk in between_tabs.split() for word in split_unspaced(chunk)):
                 for word in tokenize(raw):
                     broken_off = bool(_BROKEN_OFF.search(raw))
                     read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word

@@ -665,7 +665,8 @@ def _id_piece(run: Sequence[Piece], digits: str, changes: list[Change], also: Se
     words = [*run, *also]
     if len(words) > 1 or words[0].word != digits:
         changes.append(Change("id", " ".join(p.word for p in words), digits))
-    return Piece(digits, tuple(s for p in words for s in p.said), words[-1].broken_off, words[-1].paused,
+    said = tuple(sorted({s for p in words for s in p.said}))  # a pair read as two digits ("de de": two two) once
+    return Piece(digits, said, words[-1].broken_off, words[-1].paused,
                  words[0].role, stopped=words[-1].stopped, turn=words[0].turn)
 
 

@@ -1454,6 +1454,7 @@ STEPS: tuple[Step, ...] = (drop_email_frame, drop_chat_stamps, drop_speaker_labe
 _LABELS = frozenset({"no.", "nr.", "num.", "no:"})
 #: Words whose comma marks them as fillers ("grab, like, the ..."): read with it, for ``FILLERS``.
 _COMMA_FILLERS = frozenset({"like,"})
+_READ_AS_TYPED = _LABELS | _COMMA_FILLERS
 
 
 # --- scripts written without spaces (Chinese, Japanese) -----------------------------------------------------
@@ -1525,15 +1526,20 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
         quoted = text_line.lstrip().startswith(">")
         for k, between_tabs in enumerate(text_line.split("\t")):
             cell += k > 0
-            for raw in (word for chunk in between_tabs.split() for word in split_unspaced(chunk)):
+            chunks = between_tabs.split()
+            if UNSPACED.search(between_tabs):
+                chunks = [word for chunk in chunks for word in split_unspaced(chunk)]
+            for raw in chunks:
+                low = raw.lower()
+                broken_off = bool(_BROKEN_OFF.search(raw))
+                paused = bool(_PAUSE.search(raw))
+                stopped = bool(_STOP.search(raw))
                 for word in tokenize(raw):
-                    broken_off = bool(_BROKEN_OFF.search(raw))
-                    read = raw.lower() if raw.lower() in _LABELS | _COMMA_FILLERS else (word.rstrip("-–—") or word) if broken_off else word
-                    paused = bool(_PAUSE.search(raw))
+                    read = low if low in _READ_AS_TYPED else (word.rstrip("-–—") or word) if broken_off else word
                     pieces.append(Piece(read, (len(said),), broken_off, paused=paused, cell=(line, cell),
-                                        labelled=raw.endswith(":"), stopped=bool(_STOP.search(raw)), quoted=quoted))
+                                        labelled=raw.endswith(":"), stopped=stopped, quoted=quoted))
                     said.append(word)
-                cell += bool(_PAUSE.search(raw))
+                cell += paused
     return said, pieces
 
 

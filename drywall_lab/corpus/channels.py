@@ -54,7 +54,7 @@ import functools
 import itertools
 import random
 import re
-from typing import Callable
+from typing import Callable, Iterable
 
 from drywall_lab.corpus.markup import Phrase, Token
 from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_DIGITS, ORDINAL_WORDS, Chooser
@@ -1444,16 +1444,24 @@ def overlay_drawn(row_id: str, name: str) -> tuple[Chooser, bool]:
     return ch, ch.chance(HELD_BACK_OVERLAYS[name])
 
 
-def apply_overlays(row_id: str, sentences: Sentences, punctuated: bool = True) -> tuple[Sentences, tuple[str, ...]]:
+#: Overlays that would lose what a channel of the row already says: a pasted table keeps a form's values, not the
+#: words that count a stack or stud from a thing the site lacks ("right of the door"), so that a landmark anchor in
+#: a table would no longer say why the row expects a question.
+OVERLAYS_LEFT_OUT: dict[str, frozenset[str]] = {"pasted_tables": frozenset({"landmark_anchors"})}
+
+
+def apply_overlays(row_id: str, sentences: Sentences, punctuated: bool = True,
+                   channels: Iterable[str] = ()) -> tuple[Sentences, tuple[str, ...]]:
     """A novel instruction through each overlay channel its own draw picks (``HELD_BACK_OVERLAYS``), and the names of
     those that changed it (an overlay with nothing to rewrite, "two studs further right" in an instruction with no
     step from the last stud, leaves the row as it was and unnamed). ``punctuated``: whether the row will be written
-    with its punctuation (``Chooser.punctuated``)."""
+    with its punctuation (``Chooser.punctuated``); ``channels``: the row's channels so far (``OVERLAYS_LEFT_OUT``)."""
     applied = []
+    channels = set(channels)
     for name in HELD_BACK_OVERLAYS:
         ch, drawn = overlay_drawn(row_id, name)
         ch.punctuated = punctuated
-        if drawn:
+        if drawn and not OVERLAYS_LEFT_OUT.get(name, frozenset()) & channels:
             said = CHANNELS[name](ch, sentences)
             if said != sentences:
                 applied.append(name)

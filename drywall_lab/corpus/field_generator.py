@@ -1435,7 +1435,7 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
             channels += (C.LANDMARK_ANCHORS,)
         if split == "novel":
             sentences, overlays = C.apply_overlays(row_id, sentences,
-                                                   keeps_punctuation(ch, spoken, shout=register == "boss"))
+                                                   keeps_punctuation(ch, spoken, shout=register == "boss"), channels)
             channels += overlays
         return register, channels, len(sentences), read_through_front_end(render(ch, sentences, spoken,
                                                                                  shout=register == "boss"))

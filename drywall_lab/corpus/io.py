@@ -13,7 +13,10 @@ from drywall_lab.site import DATA_DIR
 CORPUS_DIR = DATA_DIR / "corpus"
 SPLITS = ("train", "validation", "test", "novel")
 
-_EDGE_PUNCTUATION = re.compile(r"^[\"'(\[]+|[.,?!;:\"')\]]+$")
+#: The marks of Chinese, Japanese, Arabic-script and Indic text that close a word ("，", "。", "،", "।") and that open one.
+MARKS_AFTER = "，、。；：！？）」』】،؛؟।"
+MARKS_BEFORE = "（「『【"
+_EDGE_PUNCTUATION = re.compile(rf"^[\"'(\[{MARKS_BEFORE}]+|[.,?!;:\"')\]{MARKS_AFTER}]+$")
 
 #: Characters of scripts written without spaces between words: Chinese characters and Japanese kana. A run of them is
 #: one chunk of text that holds several words (``drywall_lab.nlu.normalise.split_unspaced`` finds them).

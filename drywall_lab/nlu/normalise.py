@@ -40,7 +40,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Sequence
 
-from drywall_lab.corpus.io import UNSPACED, tokenize, unspaced
+from drywall_lab.corpus.io import MARKS_AFTER, MARKS_BEFORE, UNSPACED, tokenize, unspaced
 from drywall_lab.im.trace import TraceStep
 from drywall_lab.site import DATA_DIR
 
@@ -75,8 +75,8 @@ _MARKED_ID = re.compile(r"^(?:#|no\.?|nr\.?|num\.?)(5\d{5})$", re.I)
 #: English possessive ("500100's covered": the stud spoken of, not named for this step).
 _CASE_ENDING_ID = re.compile(r"^(5\d{5})(?:['’:-](?!s$)[^\W\d_]{1,4}|[\u1100-\u11ff]{2,12})$")
 _BROKEN_OFF = re.compile(r"[\w'][-–—]+$")
-_PAUSE = re.compile(r"\w[,;]+$")
-_STOP = re.compile(r"\w[.!?…]+$")
+_PAUSE = re.compile(r"\w[,;，、；،؛]+$")
+_STOP = re.compile(r"\w[.!?…。！？।؟]+$")
 #: What glues a form's or a program's fields into one word: "|", arrows, a colon before text, "=", brackets, "_", a
 #: leading "--" ("Stud:500104", "2x8->500106", "place(stud=500104", "centre_line", "--stack").
 _FIELD_SEPARATORS = re.compile(r"\s*(?:\||->|=>|→|⇒|—>|:(?=\S)|=|[()\[\]{}]|_|^--)\s*")
@@ -1458,15 +1458,14 @@ _READ_AS_TYPED = _LABELS | _COMMA_FILLERS
 
 
 # --- scripts written without spaces (Chinese, Japanese) -----------------------------------------------------
-#: The punctuation of Chinese, Japanese, Arabic-script and Indic text, full-width letters and the decimal digits of
-#: every script ("，", "。", "،", "।", "５００", "٥٠٠", "۵۰۰", "५००"), read as the ASCII marks and characters they stand
-#: for, a space after a mark: "板，竖着" is "板, 竖着".
-_FULL_WIDTH = {**{ord(wide): narrow for wide, narrow in zip("，、。；：！？（）「」『』【】،؛؟।",
-                                                          [", ", ", ", ". ", "; ", ": ", "! ", "? ", " (", ") ", ' "',
-                                                           '" ', ' "', '" ', " (", ") ", ", ", "; ", "? ", ". "])},
-               **{code: chr(code - 0xFEE0) for code in range(0xFF21, 0xFF5B) if chr(code - 0xFEE0).isalpha()},
-               **{code: str(unicodedata.digit(chr(code))) for code in range(0x0660, 0x10000)
-                  if unicodedata.category(chr(code)) == "Nd"}}
+#: The marks of Chinese, Japanese, Arabic-script and Indic text ("，", "。", "،", "।"): the worker's words end (or, for an
+#: opening bracket, start) at them, as at a space, and ``corpus.io.tokenize`` drops them from a word's edges.
+_SPACED_MARKS = str.maketrans({**{mark: mark + " " for mark in MARKS_AFTER}, **{mark: " " + mark for mark in MARKS_BEFORE}})
+#: Full-width letters and the decimal digits of every script ("５００", "٥٠٠", "۵۰۰", "५००"), read as the ASCII
+#: characters they stand for; the worker's words keep them as typed.
+_WIDE_CHARACTERS = {**{code: chr(code - 0xFEE0) for code in range(0xFF21, 0xFF5B) if chr(code - 0xFEE0).isalpha()},
+                    **{code: str(unicodedata.digit(chr(code))) for code in range(0x0660, 0x10000)
+                       if unicodedata.category(chr(code)) == "Nd"}}
 
 
 @lru_cache(maxsize=4)
@@ -1520,7 +1519,7 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
     kept for the lexicon."""
     said: list[str] = []
     pieces: list[Piece] = []
-    text = text.translate(_FULL_WIDTH)
+    text = text.translate(_SPACED_MARKS)
     for line, text_line in enumerate(text.split("\n")):
         cell = 0
         quoted = text_line.lstrip().startswith(">")
@@ -1536,6 +1535,7 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
                 stopped = bool(_STOP.search(raw))
                 for word in tokenize(raw):
                     read = low if low in _READ_AS_TYPED else (word.rstrip("-–—") or word) if broken_off else word
+                    read = read.translate(_WIDE_CHARACTERS)
                     pieces.append(Piece(read, (len(said),), broken_off, paused=paused, cell=(line, cell),
                                         labelled=raw.endswith(":"), stopped=stopped, quoted=quoted))
                     said.append(word)

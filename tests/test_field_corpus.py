@@ -282,10 +282,8 @@ def test_a_landmark_anchor_expects_a_question_in_the_novel_split_only(committed)
     rows = committed["novel"]
     landmarks = [r for r in rows if FG.C.LANDMARK_ANCHORS in r["channels"]]
     assert len(landmarks) >= 10
-    for row in landmarks:  # the landmark's words are O, and may carry a typo or another language's words; a table's
-        # cells keep its words without their "of" ("1 | right | halfway")
-        assert row["expected"] == FG.UNANCHORED, row["id"]
-        assert " of " in f" {' '.join(row['words']).lower()} " or "pasted_tables" in row["channels"], row["id"]
+    for row in landmarks:  # the landmark's words are O, and may carry a typo or another language's words
+        assert row["expected"] == FG.UNANCHORED and " of " in f" {' '.join(row['words']).lower()} ", row["id"]
         assert not {"Dw_loc2", "St_loc2"} & set(row["tags"]), row["id"]
     assert not any(FG.C.LANDMARK_ANCHORS in r["channels"] for split in ("validation", "test") for r in committed[split])
 

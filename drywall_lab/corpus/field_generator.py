@@ -36,7 +36,6 @@ from __future__ import annotations
 import functools
 import hashlib
 import random
-import re
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
@@ -1206,17 +1205,13 @@ def unspaced_words(sentence: Phrase) -> Phrase:
 def written_together(text: str, word: str) -> bool:
     """Whether ``word`` is written straight after ``text``, as Chinese and Japanese are typed ("竖着装在500106上"):
     where a character of such a script meets another or a digit, and the front end would cut the run they make into
-    the same words (``normalise.segment_unspaced``), so that it reads the words the row was written from."""
-    from drywall_lab.nlu.normalise import segment_unspaced
+    the same words (``normalise.split_unspaced``), so that it reads the words the row was written from."""
+    from drywall_lab.nlu.normalise import split_unspaced
 
     before, after = text[-1:], word[:1]
     if not (unspaced(before) and (unspaced(after) or after.isdigit()) or before.isdigit() and unspaced(after)):
         return False
-    if not (unspaced(before) and unspaced(after)):
-        return True  # a digit: the front end cuts where the scripts meet
-    run = re.search(f"{UNSPACED.pattern}+$", text).group()
-    head = re.match(f"{UNSPACED.pattern}+", word).group()
-    return segment_unspaced(run + head) == segment_unspaced(run) + segment_unspaced(head)
+    return split_unspaced(text + word) == split_unspaced(text) + split_unspaced(word)
 
 
 def read_through_front_end(said: tuple[str, list[str], list[str], list[str]]) -> tuple[str, list[str], list[str], list[str]]:

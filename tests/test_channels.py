@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import random
+import re
 
 import pytest
 
@@ -395,3 +396,22 @@ def test_crew_crosstalk_is_read_back_as_the_same_command(seed):
     text, outcome = _read_outcome(out)
     assert text.count(":") >= 2, text
     assert outcome == {"drywall_id": "500320", "stud_id": "500106", "placement": "horizontal_top", "refusal": None}, text
+
+
+def test_hyphenated_writes_compounds_the_front_end_reads_as_the_words_again():
+    """``hyphenated``: pairs of words of one tag after a head word joined by a hyphen ("left-line", "bottom-row"); the
+    front end reads the same words as before the rewrite."""
+    from drywall_lab.nlu.normalise import normalise
+
+    sentence = _sentence("stand the 2x8/width up on 500104/ID_stud on the left line , far/St_loc1 right/St_loc1 "
+                         "in the bottom/Hr_btm row/Hr_btm")
+    before = normalise(_words([sentence])).words
+    seen = set()
+    for seed in range(30):
+        out = C.hyphenated(Chooser(random.Random(seed)), [list(sentence)])
+        words = _words(out)
+        seen.update(w for w in words.split() if "-" in w)
+        assert normalise(words).words == before
+        assert [t.tag for s in out for t in s if t.is_word and "-" in t.word and t.tag != "O"] in (
+            [], ["St_loc1"], ["Hr_btm"], ["St_loc1", "Hr_btm"])
+    assert {"left-line", "far-right", "bottom-row"} <= seen

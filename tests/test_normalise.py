@@ -472,3 +472,24 @@ def test_a_script_without_spaces_is_cut_by_the_longest_form_and_where_scripts_me
 def test_the_workers_words_in_chinese_are_the_words_the_front_end_cut():
     n = N.normalise("从左边那摞拿一张")
     assert len(n.said) > 1 and "".join(n.said) == "从左边那摞拿一张"
+
+
+@pytest.mark.parametrize("said, read", [
+    ("edge on the left-line of stud 500104", "edge on the left line of stud 500104"),
+    ("the far-right stud, bottom-row", "the far right stud bottom row"),
+    ("the stud-vert one", "the stud vertical one"),  # taken apart before the shorthand is read
+    ("the left-hand pile", "the left-hand pile"),  # a word the IM reads whole
+    ("the four-by-six", "the four-by-six"),  # a size: its parts are numbers (read as a size where one is due)
+    ("re-hang the top-most sheet", "re-hang the top-most sheet"),  # bound parts
+    ("an x-ray", "an x-ray"),  # a part of one letter
+    ("pose-la sur 500104", "put it on 500104"),  # a lexicon form: read whole
+])
+def test_a_compound_typed_with_hyphens_is_read_as_its_words(said, read):
+    assert N.normalise_text(said) == read
+
+
+def test_a_compounds_words_come_from_the_workers_one_word():
+    said = N.normalise("edge on the centre-line")
+    assert said.said[-1] == "centre-line" and said.words[-2:] == ("centre", "line")
+    assert said.sources[-2:] == ((3,), (3,))
+    assert said.tags_of_said(["O", "O", "O", "Vr_md", "Vr_md"]) == ["O", "O", "O", "Vr_md"]

@@ -40,10 +40,13 @@ keeping the meaning and carrying every word's tag along:
   the message it answers (naming other studs, sizes and rows) and over a sign-off ("Dana | PM | Sent from my phone").
 - ``crew_crosstalk``: the instruction as two workers said it to each other, copied in under their labels ("MIKE:
   ... DAVE: nah, 500103, ..."), one now and then overruling a value the other said.
+- ``hyphenated``: a compound typed with a hyphen, as people write one ("left-line", "bottom-row", "centre-line",
+  "far-right").
 
 The front end (``drywall_lab.nlu.normalise``) reads the first three, the metric sides, the code switch, the glued
 fields, the values taken back, the pasted tables, an anchor said first, chat messages' headers and starred
-corrections, an e-mail's frame and the labels of a conversation into the corpus's written forms; the tagger must learn the
+corrections, an e-mail's frame, the labels of a conversation and hyphenated compounds into the corpus's written
+forms; the tagger must learn the
 others, and the IM reads a step that goes on from the last stud (``im.stud.stud_going_on``). Whole channels and pairs of channels are held back from the
 training splits (``HELD_BACK``, ``HELD_BACK_PAIRS``): the novel split uses them, so that it measures an instruction
 said in a way the tagger never met (first sight).
@@ -1175,6 +1178,49 @@ def glued_fields(ch: Chooser, sentences: Sentences) -> Sentences:
     return out
 
 
+# --- hyphenated compounds -------------------------------------------------------------------------------------
+#: The first word of a compound people write with a hyphen: a side, a row, a line or a part of the wall before the
+#: word it qualifies ("left-line", "bottom-row", "far-right", "end-stud").
+COMPOUND_HEADS = frozenset({"left", "right", "centre", "center", "middle", "top", "bottom", "far", "upper", "lower",
+                            "half", "stud", "edge", "end", "next", "last", "first", "full", "flat", "stand"})
+
+
+def hyphenated(ch: Chooser, sentences: Sentences) -> Sentences:
+    """One to three pairs of words of one tag written as one compound with a hyphen ("left-line", "bottom-row",
+    "far-right", "stand-up"): a head word (``COMPOUND_HEADS``) and the word after it, where the front end reads the
+    compound as the two words again (``normalise.joined_compound``)."""
+    from drywall_lab.nlu.normalise import joined_compound
+
+    slots = [(s, i) for s, sentence in enumerate(sentences) for i in range(len(sentence) - 1)
+             if sentence[i].is_word and sentence[i + 1].is_word and sentence[i].word.lower() in COMPOUND_HEADS
+             and (sentence[i].tag, sentence[i].coref) == (sentence[i + 1].tag, sentence[i + 1].coref)
+             and sentence[i + 1].word.isascii() and joined_compound(f"{sentence[i].word}-{sentence[i + 1].word}")
+             and sentence[i + 1].word.lower() not in _FUNCTION_WORDS]
+    if not slots:
+        return sentences
+    chosen = set(ch.rng.sample(slots, min(len(slots), ch.rng.choice([1, 1, 2, 3]))))
+    out: Sentences = []
+    for s, sentence in enumerate(sentences):
+        new: Phrase = []
+        skip = False
+        for i, tok in enumerate(sentence):
+            if skip:
+                skip = False
+                continue
+            if (s, i) in chosen and not (new and new[-1].word.endswith("-")):
+                new.append(Token(f"{tok.word}-{sentence[i + 1].word}", tok.tag, tok.coref))
+                skip = True
+            else:
+                new.append(tok)
+        out.append(new)
+    return out
+
+
+#: Words a compound never ends on ("left-the").
+_FUNCTION_WORDS = frozenset({"the", "a", "an", "of", "to", "on", "in", "it", "and", "from", "at", "by", "with", "one",
+                             "or", "is", "for", "then", "so"})
+
+
 # --- a value taken back -------------------------------------------------------------------------------------
 #: How a worker takes a value back and says the one meant (A the value taken back, B the one meant): broken off with
 #: or without a cue, or after a pause with a cue before or after the new value.
@@ -1383,6 +1429,7 @@ CHANNELS: dict[str, Channel] = {
     "code_switch": code_switch, "openers": openers, "glued_fields": glued_fields, "value_repairs": value_repairs,
     "continued_steps": continued_steps, "pasted_tables": pasted_tables, "anchor_first": anchor_first,
     "chat_messages": chat_messages, "email_replies": email_replies, "crew_crosstalk": crew_crosstalk,
+    "hyphenated": hyphenated,
 }
 #: A row whose target is said by a property ("the narrow one") instead of its size, in every split: drawn where the
 #: target is said (``field_generator.size_property_draw``), so not a function of sentences; a row records it like one.
@@ -1406,7 +1453,8 @@ HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")
 #: drawn apart from everything else (``overlay_rng``): the rest of the split is what it was without them.
 HELD_BACK_OVERLAYS: dict[str, float] = {"code_switch": 0.2, "openers": 0.15, "glued_fields": 0.1, "value_repairs": 0.1,
                                         "continued_steps": 0.5, "pasted_tables": 0.05, "anchor_first": 0.5,
-                                        "chat_messages": 0.08, "email_replies": 0.06, "crew_crosstalk": 0.06}
+                                        "chat_messages": 0.08, "email_replies": 0.06, "crew_crosstalk": 0.06,
+                                        "hyphenated": 0.1}
 #: Held back as a pair: each channel is met alone in training, never both at once.
 HELD_BACK_PAIRS: tuple[tuple[str, str], ...] = (("spoken_ids", "disfluency"), ("stack_talk", "asides"),
                                                 ("site_references", "relative_talk"))

@@ -10,8 +10,8 @@ sorry", also late, after a reason or the rest of its clause: "on 500111... nah t
 what comes with a message copied in (a chat message's header, an e-mail's subject line, quoted lines and sign-off,
 the speakers' labels of a conversation, where the next speaker may overrule a value: "MIKE: ... on 500104. DAVE:
 nah, 500103"), an id with a case ending ("500104'e"), a stud written as a sum as a program has it ("stud=prev+2",
-"500104-1"), text in a script written without spaces, cut into words against the lexicon ("竖着装在500106上"),
-and words of another language or
+"500104-1"), a compound typed with hyphens ("left-line", "bottom-row"), text in a script written without spaces,
+cut into words against the lexicon ("竖着装在500106上"), and words of another language or
 dialect a crew mixes into English (Spanish, German, French, Portuguese, Polish, West African Pidgin, Jamaican
 Creole, spoken English dialects: "la pila de la izquierda", "cuatro por ocho", "der mittlere Stapel", "stand am for
 stud", "that'n": ``data/lexicon/code_switch.tsv``). The paper's tagger (Sec. 3.1) learns surface forms from its
@@ -64,6 +64,8 @@ TEEN_WORDS: dict[str, str] = {"ten": "10", "eleven": "11", "twelve": "12", "thir
 TENS_WORDS: dict[str, str] = {"twenty": "2", "thirty": "3", "forty": "4", "fifty": "5", "sixty": "6", "seventy": "7",
                               "eighty": "8", "ninety": "9"}
 REPEATS: dict[str, int] = {"double": 2, "triple": 3}
+#: Every word of a number (a compound with one is a size or a count: "four-by-six", "eight-foot", "twenty-two").
+_NUMBER_WORDS = frozenset({*DIGIT_WORDS, *TEEN_WORDS, *TENS_WORDS, *REPEATS, "hundred", "thousand", "by"})
 #: The site's ids are six digits starting 500 (spec section 1: studs 5001xx, panels 5003xx); an unknown one is still
 #: read, to be refused by the IM as unknown.
 ID_PATTERN = re.compile(r"^500\d{3}$")
@@ -488,6 +490,58 @@ def _starts(pieces: Sequence[Piece], i: int, phrases: tuple[tuple[str, ...], ...
         if tuple(p.word.lower() for p in pieces[i:i + len(phrase)]) == phrase:
             return len(phrase)
     return 0
+
+
+#: Parts that make a hyphen-joined word one word, not two ("re-hang", "top-most", "square-ish").
+_BOUND_PARTS = frozenset({"re", "pre", "un", "non", "most", "ish", "wise", "like"})
+
+
+@lru_cache(maxsize=1)
+def _whole_compounds() -> frozenset[str]:
+    """The hyphen-joined words the IM reads whole ("left-hand", "full-size"): those of ``im.words``' word lists."""
+    from drywall_lab.im import words as W
+
+    lists = [v for v in vars(W).values() if isinstance(v, (frozenset, set, tuple, list))]
+    return frozenset(w.lower() for v in lists for w in v if isinstance(w, str) and "-" in w)
+
+
+def _lexicon_word(word: str) -> bool:
+    """Whether a lexicon reads ``word`` whole: the shorthand ("ctr-line") or the code switch ("mets-la")."""
+    exact, any_case = read_lexicon()
+    return (word in exact or word.lower() in any_case or (fold(word),) in _code_switch_table()
+            or (word.lower(),) in _code_switch_table())
+
+
+def joined_compound(word: str) -> list[str] | None:
+    """The words of a compound typed with hyphens ("left-line", "bottom-row" -> left, line; bottom, row), or None:
+    parts of letters only, two or more each, none a number word (a size: "four-by-six", "eight-foot") or a bound
+    part ("re-hang", "top-most"), and not a word the IM reads whole ("left-hand", ``_whole_compounds``) or a lexicon
+    form ("ctr-line", "mets-la")."""
+    parts = word.split("-")
+    if len(parts) < 2 or word.lower() in _whole_compounds() or _lexicon_word(word):
+        return None
+    low = {p.lower() for p in parts}
+    if not all(len(p) >= 2 and p.isalpha() for p in parts) or low & _BOUND_PARTS or low & _NUMBER_WORDS:
+        return None
+    return parts
+
+
+def split_compounds(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
+    """A compound typed with hyphens read as its words, as said apart ("left-line" is the left line, "bottom-row" the
+    bottom row: ``joined_compound``), before the lexicons read them ("stud-vert" -> stud, vert -> stud, vertical);
+    each word comes from the worker's one word."""
+    out: list[Piece] = []
+    for p in pieces:
+        parts = joined_compound(p.word)
+        if parts is None:
+            out.append(p)
+            continue
+        changes.append(Change("compound", p.word, " ".join(parts)))
+        end = len(parts) - 1
+        out += [replace(p, word=w, broken_off=p.broken_off and k == end, paused=p.paused and k == end,
+                        stopped=p.stopped and k == end, labelled=p.labelled and k == end, turn=p.turn and k == 0)
+                for k, w in enumerate(parts)]
+    return out
 
 
 def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
@@ -1444,8 +1498,8 @@ def read_tables(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 
 
 #: The front end's steps, in order.
-STEPS: tuple[Step, ...] = (drop_email_frame, drop_chat_stamps, drop_speaker_labels, read_tables, split_fields, read_offsets, translate_code_switch, expand_shorthand,
-                           drop_fillers, read_ids, read_star_corrections, resolve_value_repairs, resolve_late_repairs,
+STEPS: tuple[Step, ...] = (drop_email_frame, drop_chat_stamps, drop_speaker_labels, read_tables, split_fields, read_offsets, split_compounds, translate_code_switch,
+                           expand_shorthand, drop_fillers, read_ids, read_star_corrections, resolve_value_repairs, resolve_late_repairs,
                            drop_echo_turns, resolve_false_starts, anchor_last, metric_sizes, singular_sizes)
 
 

@@ -166,8 +166,8 @@ BEST_PATH = DecisionSettings(k=1, costs=DecisionCosts(wrong=0.0, refuse=1.0, ask
 #: corpus's validation split for the shipped tagger (``benchmarks/results/decision.md``; a test checks that they are
 #: the recorded ones).
 DEFAULT_SETTINGS = DecisionSettings(weights=_weights(
-    log_probability=1.4873, undetermined=-5.3593, site_refusal=-4.0607, refusal_log_probability=0.7504,
-    beyond_k_best=3.1206),
+    log_probability=1.6744, undetermined=-2.9124, site_refusal=-5.6283, refusal_log_probability=0.538,
+    beyond_k_best=2.018),
     costs=DecisionCosts(wrong=10, refuse=1.0, ask=0.3), option_floor=0.0)
 
 #: The settings for tags known for certain (``decide_tags``): no doubt about a placement the tags leave out.

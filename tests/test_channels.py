@@ -188,6 +188,16 @@ def test_asides_are_composed_and_all_o():
     rng = random.Random(4)
     remarks = {" ".join(C.aside_words(rng)) for _ in range(300)}
     assert len(remarks) > 150  # composed, not a short list
+    # errands: other people's sheets of a size, or a row elsewhere, said around the instruction
+    sized = [r for r in remarks if re.search(r"\b(4x8|2x8|4x6|4 by 8|2 by 8|4x12|4 by 10)s?\b", r)
+             and any(who in r for who in C.ERRAND_SLOTS["who"])]
+    rows = [r for r in remarks if re.search(r"\b(top|bottom|upper|lower) (row|course)\b", r)
+            and any(where in r for where in C.ERRAND_SLOTS["where"])]
+    assert len(sized) > 5 and len(rows) > 2
+    assert not any("sixs" in r for r in remarks)
+    # an errand's row is always said with another place: "we do the top row" alone would be a command
+    for frame in C.ERRAND_FRAMES:
+        assert "{row}" not in frame or "{where}" in frame, frame
     ch = Chooser(random.Random(5))
     sentence = _sentence("put the 2x8/width on 500104/ID_stud")
     for _ in range(30):
@@ -332,8 +342,9 @@ def _read_outcome(out):
 
 
 @pytest.mark.parametrize("seed", range(20))
-def test_continued_steps_leave_the_anchor_unsaid_and_the_im_counts_from_the_previous_stud(seed):
-    sentence = _phrase("put the full/dim sheet two/St_loc1 studs to/St_loc1 the/St_loc1 right/St_loc1 of the "
+@pytest.mark.parametrize("link", ["of", "from"])
+def test_continued_steps_leave_the_anchor_unsaid_and_the_im_counts_from_the_previous_stud(seed, link):
+    sentence = _phrase(f"put the full/dim sheet two/St_loc1 studs to/St_loc1 the/St_loc1 right/St_loc1 {link} the "
                        "previous/St_loc2 stud please")
     out = C.continued_steps(Chooser(random.Random(seed)), [sentence])
     text, outcome = _read_outcome(out)

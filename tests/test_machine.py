@@ -190,7 +190,15 @@ def test_latency_judges_the_speed_targets_on_pairs_timed_alternately() -> None:
     assert latency.paired_target_lines(runs) == [
         "target decision layer at most 1.5x the tagger's predict, timed alternately: met (1.45x, median over the runs; "
         "1.40, 1.70, 1.45)"]
-    assert latency.PAIRED == (("lstm", "lstm_decided"),)
+    assert latency.PAIRED == (("lstm", "lstm_decided"), ("lstm", "lstm_read"))
+    # the shipped NLU against bert_base: bert_base over the tagger, divided by the front end's share timed alternately
+    runs = [{"paired": {"lstm_read/lstm": r}} for r in (1.1, 1.3, 1.2)]
+    medians = pd.DataFrame({"single_p50_ms": [3.0, 80.0]}, index=["lstm", "bert_base"])
+    assert latency.paired_target_lines(runs, medians) == [
+        "target lstm_read at least 20x faster than bert_base, the front end timed alternately with the tagger: met "
+        "(22.2x: the front end 1.20x the tagger alone, median over the runs; 1.10, 1.30, 1.20)"]
+    medians.loc["bert_base", "single_p50_ms"] = 60.0
+    assert "MISSED (16.7x" in latency.paired_target_lines(runs, medians)[0]
 
     class Clock:
         def __init__(self, seconds):

@@ -159,6 +159,10 @@ def test_the_alignment_gives_the_workers_words_their_tags_and_the_trace_says_wha
     ("eine schmale, quer in der unteren Reihe, ab dem ersten Staender", "a narrow lying flat in the bottom row from the first stud"),
     ("pogne une feuille quatre par huit pis mets-la debout", "grab a sheet four by eight and put it upright"),
     ("sur le montant cinq zéro zéro un zéro six", "on the stud 500106"),  # "zéro" is "zero", "un" one
+    ("en likadan, tre stolpar åt vänster", "another of the same size three studs to the left"),  # Swedish
+    ("fem noll noll ett noll fyra", "500104"),  # Swedish digits, read as an id
+    ("hent en halv plate fra høyre stabel", "grab a half panel from the right pile"),  # Norwegian
+    ("læg en gipsplade på stolpe 500105 i øverste række", "lay a drywall panel on stud 500105 in the top row"),  # Danish
 ])
 def test_another_language_mixed_in_is_read_in_english(said, read):
     assert N.normalise_text(said) == read

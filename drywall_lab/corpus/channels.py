@@ -10,7 +10,8 @@ keeping the meaning and carrying every word's tag along:
 - ``disfluency``: fillers, false starts broken off with a dash ("the- the"), a part begun wrongly and repaired
   ("the four by- no, the 2x8"), a trailing confirmation ("yeah, that one");
 - ``asides``: a reason or remark around the instruction that names sizes, rows, counts and positions of other
-  things ("the top of that pile is chipped", "the 4x8s are heavy") and so must all be ``O``;
+  things ("the top of that pile is chipped", "the 4x8s are heavy"), or an errand composed of a person, sheets of a size
+  or a row, another place and a time ("the tapers would like some 4x6s upstairs"), and so must all be ``O``;
 - ``restated_studs``: a stud named by where it is and then said again another way ("on the first stud, the
   leftmost one", "the fourth from the right - the tenth stud");
 - ``plural_sizes``: a panel named as one of its size ("one of the 2x8s");
@@ -294,9 +295,41 @@ ASIDE_FRAMES: tuple[str, ...] = (
     "ignore {thing} for now", "{thing} can wait", "nobody touches {thing} today", "we measured {thing} twice",
     "the plans changed for {thing}", "I will cut around {thing} myself", "forget about {thing}",
 )
+#: Remarks about someone else's sheets, another place or a later time: a person or crew, a verb, sheets of a size
+#: or a row, a place and a time, composed (``ERRAND_FRAMES``), so that a size or a row said around the instruction
+#: is no part of it however the remark is worded. The place is never left out: "we hang a 4x8" alone is a command.
+ERRAND_FRAMES: tuple[str, ...] = (
+    "{who} will still need {sheets} {where}", "{who} asked for {sheets} {where}", "I promised {sheets} to {who}",
+    "we ordered {sheets} {where}", "save {sheets} for {who}", "{sheets} go {where} {when}", "{sheets} are for {who}",
+    "the truck brings {sheets} {when}", "we are short on {sheets} {where}", "put {sheets} on the list for {who}",
+    "I have to carry {sheets} {where} {when}", "{who} took {sheets} {when}", "we hang {sheets} {where} {when}",
+    "leave {sheets} {where} for {who}", "{who} will cut {sheets} {when}", "{who} would like {sheets} {where}",
+    "keep {sheets} back for {who}", "{sheets} still have to go {where}", "count {sheets} for {who} {when}",
+    "the {row} row {where} waits till {when}", "we do the {row} row {where} {when}",
+    "{who} will finish the {row} course {where}", "{who} can start the {row} row {where} {when}",
+    "the {row} row {where} is {who}'s job",
+)
+#: The sheets, rows, people, places and times of an errand.
+ERRAND_SLOTS: dict[str, tuple[str, ...]] = {
+    "sheets": ("a bundle of {size}s", "a couple of {size}s", "some {size}s", "{count} {size}s", "a stack of {size}s",
+               "{count} sheets of {size}", "the rest of the {size}s", "more {size}s", "a few {size} sheets",
+               "a {size}", "the {size} pieces", "{count} more {size}s", "the {size}s"),
+    "who": ("the tapers", "the other crew", "the crew upstairs", "the framers", "the boss", "Dave", "the client",
+            "the next crew", "the electricians", "the plumber", "the site manager", "Ana's team"),
+    "where": ("upstairs", "in the hallway", "on the second floor", "on wall B", "on the other wall", "in the garage",
+              "for the ceiling", "for the stairwell", "in the back room", "next door", "on the north wall",
+              "in unit 4", "at the other job"),
+    "when": ("later", "tomorrow", "after lunch", "this afternoon", "first thing monday", "next week", "before five",
+             "once we finish here", "", ""),
+    "row": ("top", "bottom", "upper", "lower"),
+}
+#: How an errand is brought up (besides ``ASIDE_LEADS``).
+ERRAND_LEADS = ("remind me", "note to self", "don't let me forget", "just so you know", "for the record",
+                "side note", "btw", "and")
 _ASIDE_SLOTS = {"side": ("left", "right", "middle", "far left", "far right", "first", "last"),
-                "size": ("4x8", "2x8", "4x6", "4 by 8", "two by eight", "4 x 6", "full sheet"),
-                "ordinal": ("second", "third", "4th", "fifth", "last"), "count": ("two", "three", "4", "five")}
+                "size": ("4x8", "2x8", "4x6", "4 by 8", "two by eight", "4 x 6", "full sheet", "2 by 8", "four by six",
+                         "4x12", "4 by 10", "half sheet", "four by eight"),
+                "ordinal": ("second", "third", "4th", "fifth", "last"), "count": ("two", "three", "4", "five", "six")}
 
 
 #: How an aside is tied on: before, between or after the instruction; a reason only after it.
@@ -305,13 +338,23 @@ REASON_LEADS = ("because", "since", "as")
 
 
 def aside_words(rng: random.Random) -> list[str]:
-    """One remark: a fixed one (``ASIDES``) or a frame (``ASIDE_FRAMES``) said of a thing (``ASIDE_THINGS``)."""
-    if rng.random() < 0.3:
+    """One remark: a fixed one (``ASIDES``), a frame (``ASIDE_FRAMES``) said of a thing (``ASIDE_THINGS``), or an
+    errand (``ERRAND_FRAMES``), now and then brought up with ``ERRAND_LEADS``."""
+    draw = rng.random()
+    if draw < 0.2:
         return rng.choice(ASIDES).split()
-    text = rng.choice(ASIDE_FRAMES).replace("{thing}", rng.choice(ASIDE_THINGS))
+    if draw < 0.55:
+        text = rng.choice(ASIDE_FRAMES).replace("{thing}", rng.choice(ASIDE_THINGS))
+    else:
+        text = rng.choice(ERRAND_FRAMES)
+        for slot, values in ERRAND_SLOTS.items():
+            text = text.replace("{" + slot + "}", rng.choice(values))
+        if rng.random() < 0.4:
+            text = rng.choice(ERRAND_LEADS) + " " + text
+        text = text.replace("{count} {size}s", "{count} of the {size}s") if rng.random() < 0.5 else text
     for slot, values in _ASIDE_SLOTS.items():
         text = text.replace("{" + slot + "}", rng.choice(values))
-    return text.split()
+    return re.sub(r"\bsixs\b", "sixes", text).split()
 
 
 def asides(ch: Chooser, sentences: Sentences) -> Sentences:
@@ -860,12 +903,12 @@ GOING_ON_FORMS = ("{n} studs further {s}", "{n} more to the {s}", "{n} studs ove
 
 def _step_from_the_last(sentence: Phrase, i: int) -> tuple[int, str] | None:
     """A stud counted from the previous one that starts at ``i`` ("two studs to the right of the previous stud",
-    "one to the left of the one you just used", "three over to the right of that one"): (the end of its words, the
-    side), or None. The anchor is the ``St_loc2`` words after "of" (a few untagged words may come first: "of the one
-    you just used"), and they point back (``im.words.points_back``)."""
+    "one to the left of the one you just used", "three over to the right of that one", "two right from the last
+    stud"): (the end of its words, the side), or None. The anchor is the ``St_loc2`` words after "of" or "from" (a few
+    untagged words may come first: "of the one you just used"), and they point back (``im.words.points_back``)."""
     from drywall_lab.im.words import ids_in, points_back, says_end
 
-    found = _counted_step(sentence, i)
+    found = _counted_step(sentence, i, ("of", "from"))
     if found is None:
         return None
     e, side, of = found
@@ -1445,7 +1488,7 @@ LANDMARK_ANCHORS = "landmark_anchors"
 CHANNEL_NAMES: tuple[str, ...] = (*CHANNELS, SIZE_PROPERTIES, UNDECIDED, LANDMARK_ANCHORS)
 #: How often each channel is applied to a training instruction (independently of each other and of the register).
 CHANNEL_RATES: dict[str, float] = {"site_references": 0.12, "stack_talk": 0.12, "relative_talk": 0.35,
-                                   "spoken_ids": 0.15, "shorthand": 0.12, "disfluency": 0.15, "asides": 0.15,
+                                   "spoken_ids": 0.15, "shorthand": 0.12, "disfluency": 0.15, "asides": 0.2,
                                    "plural_sizes": 0.10, "restated_studs": 0.06}
 #: Held back whole: never in train, validation or test; the novel split uses it.
 HELD_BACK: tuple[str, ...] = ("shorthand", "metric_sizes")

@@ -46,6 +46,9 @@ from drywall_lab.corpus import generator as G
 from drywall_lab.corpus.io import UNSPACED, read_jsonl, tokenize, unspaced, write_jsonl
 from drywall_lab.corpus.markup import Phrase, Token, parse, plain, tagged
 from drywall_lab.corpus.phrases import NUMBER_WORDS, ORDINAL_DIGITS, ORDINAL_WORDS, Chooser
+from drywall_lab.im import words as W
+from drywall_lab.im.mapper import task_correct
+from drywall_lab.im.trace import TaggedInstruction
 from drywall_lab.site import DATA_DIR, Site, default_site, size_words
 
 FIELD_SEED = 2026
@@ -1471,10 +1474,21 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
                 meaning = replace(meaning, expected=dict(UNANCHORED))
         if not words[1]:
             return None
-        return G.corpus_row(row_id, words, n_sentences, f"field-{split}-ep{episode_no:05d}",
-                            step, ep, meaning, register=register, channels=list(channels))
+        row = G.corpus_row(row_id, words, n_sentences, f"field-{split}-ep{episode_no:05d}",
+                           step, ep, meaning, register=register, channels=list(channels))
+        return row if reads_as_meant(row, site) else None  # a saying whose gold tags miss what it means is left out
 
     return G.episode_rows(rng, site, n, lambda: rng.randint(1, 8), FIELD_REFUSAL_RATE, FIELD_WEIGHTS, say)
+
+
+def reads_as_meant(row: dict, site: Site | None = None) -> bool:
+    """Whether a row's gold tags read as it means: they give its expected command or refusal, and what the
+    correction rule takes back from them is a word said again later with the same tag (the guidelines tag only the
+    final intention). Every row of every split holds (tested); a saying that does not is left out."""
+    taken = TaggedInstruction(row["words"], row["tags"])
+    return task_correct(row, site=site) and all(
+        any(W.normalise(taken.words[j]) == W.normalise(row["words"][i]) for j in range(i + 1, len(taken.words))
+            if taken.tags[j] == row["tags"][i]) for i in taken.taken_back)
 
 
 def generate_field_split(split: str, n: int | None = None, seed: int = FIELD_SEED, site: Site | None = None) -> list[dict]:

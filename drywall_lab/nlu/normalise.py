@@ -38,7 +38,7 @@ import unicodedata
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
-from typing import Callable, Sequence
+from typing import Callable, Iterable, Sequence
 
 from drywall_lab.corpus.io import MARKS_AFTER, MARKS_BEFORE, UNSPACED, tokenize, unspaced
 from drywall_lab.im.trace import TraceStep
@@ -210,6 +210,7 @@ def read_code_switch(path: Path | str = CODE_SWITCH_PATH) -> tuple[tuple[str, st
 ACCENTS_TELL_APART = frozenset({"vi", "ja"})
 
 
+@lru_cache(maxsize=65536)
 def as_written(word: str) -> str:
     """A word as a form of a language whose accents tell words apart is matched: lower case, accents kept (composed)."""
     return unicodedata.normalize("NFC", word.lower())
@@ -230,13 +231,28 @@ def _code_switch_table(path: Path | str = CODE_SWITCH_PATH) -> dict[tuple[str, .
 
 
 @lru_cache(maxsize=4)
-def _lengths_by_first_word(path: Path | str = CODE_SWITCH_PATH) -> dict[str, tuple[int, ...]]:
-    """Each first word of a key of ``_code_switch_table`` -> the lengths of its keys, the longest first: a word that
-    starts no form is passed over in one look-up."""
-    out: dict[str, set[int]] = {}
+def _lengths_by_start(path: Path | str = CODE_SWITCH_PATH) -> dict[tuple[str, ...], tuple[int, ...]]:
+    """Each start of a key of ``_code_switch_table`` (a key of one word starts with that word, a longer one with its
+    first two) -> the lengths of the keys that start so: a common word that starts only long forms ("stud", "left")
+    is passed over unless the word after it goes on one."""
+    out: dict[tuple[str, ...], set[int]] = {}
     for key in _code_switch_table(path):
-        out.setdefault(key[0], set()).add(len(key))
-    return {word: tuple(sorted(lengths, reverse=True)) for word, lengths in out.items()}
+        out.setdefault(key[:2], set()).add(len(key))
+    return {start: tuple(lengths) for start, lengths in out.items()}
+
+
+def _form_starts(folded: Sequence[str], written: Sequence[str],
+                 starts: dict[tuple[str, ...], tuple[int, ...]]) -> dict[int, list[int]]:
+    """Where a key of ``_code_switch_table`` may start in the words, folded or as written, and the lengths of the keys
+    that may start there, the longest first: a word alone (``zip(words)``: each word as a tuple of one) or two words
+    in a row are a start of ``starts`` (``_lengths_by_start``). Empty where no key may start."""
+    out: dict[int, set[int]] = {}
+    for words in (folded,) if written == folded else (folded, written):  # the same words (no accents) looked up once
+        for run in (zip(words), zip(words, words[1:])):
+            for i, start in enumerate(run):
+                if start in starts:
+                    out.setdefault(i, set()).update(starts[start])
+    return {i: sorted(lengths, reverse=True) for i, lengths in out.items()}
 
 
 def _form_key(form: str, language: str) -> tuple[str, ...]:
@@ -291,28 +307,40 @@ def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     ("3rd-from-right"). A label whose value is one word that says which ("size=same", "row=top", "pile:left") is
     read in the order people say it ("same size", "top row", "left pile"). A separator said alone ("|", "->", "=")
     stays: the IM reads it as punctuation, a boundary between fields."""
+    if all(_field_words(p.word) is None for p in pieces):
+        return pieces  # no word glues fields or a position's words
     out: list[Piece] = []
     for p in pieces:
-        glued = _FIELD_SEPARATORS.search(p.word) and any(c.isalnum() for c in p.word)
-        if not glued and joined_position(p.word) is None:
+        words = _field_words(p.word)
+        if words is None:
             out.append(p)
             continue
-        parts = [w for w in _FIELD_SEPARATORS.split(p.word) if w] if glued else [p.word]
-        k = len(parts) - 2  # the label and its value, the last two parts ("place(size=same")
-        if k >= 0 and parts[k].lower() in FIELD_LABELS and parts[k + 1].isalpha() and parts[k + 1].lower() != "id" \
-                and parts[k + 1].lower() not in DIGIT_WORDS:
-            parts[k:k + 2] = parts[k + 1], parts[k]  # "size=same" -> "same size"
-        words = [w for part in parts for word in tokenize(part) if any(c.isalnum() for c in word)
-                 for w in joined_position(word) or [word]]
-        if words != [p.word]:
+        if words != (p.word,):
             changes.append(Change("separator", p.word, " ".join(words)))
         out += _read_as(words, p.said, p)
     return out
 
 
+@lru_cache(maxsize=65536)
+def _field_words(word: str) -> tuple[str, ...] | None:
+    """The words of a word that glues a form's fields or a position's words (``split_fields``), or None where it glues
+    none. A pure function of the word, so each word is read once."""
+    glued = _FIELD_SEPARATORS.search(word) and any(c.isalnum() for c in word)
+    if not glued and joined_position(word) is None:
+        return None
+    parts = [w for w in _FIELD_SEPARATORS.split(word) if w] if glued else [word]
+    k = len(parts) - 2  # the label and its value, the last two parts ("place(size=same")
+    if k >= 0 and parts[k].lower() in FIELD_LABELS and parts[k + 1].isalpha() and parts[k + 1].lower() != "id" \
+            and parts[k + 1].lower() not in DIGIT_WORDS:
+        parts[k:k + 2] = parts[k + 1], parts[k]  # "size=same" -> "same size"
+    return tuple(w for part in parts for word in tokenize(part) if any(c.isalnum() for c in word)
+                 for w in joined_position(word) or [word])
+
+
 #: A count added to or taken from a stud written as a sum ("prev+2", "500104-1", "last + 3", "prev stud +5"): the
 #: anchor, the sign, the count (at most two digits).
 _OFFSET = re.compile(r"^(prev|previous|last|500\d{3})?(?:stud)?([+-])(\d{1,2})$", re.I)
+_SIGNED_COUNT = re.compile(r"[+-]\d")
 _OFFSET_ANCHORS = {"prev": ("the", "previous", "stud"), "previous": ("the", "previous", "stud"),
                    "last": ("the", "last", "stud")}
 
@@ -322,6 +350,8 @@ def read_offsets(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     words: "2 to the right of the previous stud", "1 to the left of 500104". "prev" or "last" may stand apart from the
     sign, with or without "stud" ("prev +2", "prev + 2", "last -1", "prev stud +5"), an id only from "+N" ("500104 +2": "500321 - 1" is more likely a dash
     between fields); a sign with no anchor ("+2") is left as written (counted from what?)."""
+    if not _SIGNED_COUNT.search("".join([p.word for p in pieces])):
+        return pieces  # a sum's sign is followed by its count, in the words run together as ``_OFFSET`` reads them
     out: list[Piece] = []
     signed = [("+" in p.word or "-" in p.word) for p in pieces]
     i = 0
@@ -385,6 +415,10 @@ def expand_shorthand(pieces: list[Piece], changes: list[Change], lexicon: Path |
     """The site's shorthand read out in full from the lexicon ("CL" -> "centre line", "btm" -> "bottom"); a
     lower-case side letter where a side is due ("to the r of")."""
     exact, any_case = read_lexicon(lexicon)
+    words = [p.word for p in pieces]
+    if exact.keys().isdisjoint(words) and any_case.keys().isdisjoint(map(str.lower, words)) \
+            and _SIDES.keys().isdisjoint(words):
+        return pieces  # no word is in the lexicon or a side letter: nothing is read
     out: list[Piece] = []
     for k, p in enumerate(pieces):
         reading = exact.get(p.word, any_case.get(p.word.lower())) or _side_letter(pieces, k)
@@ -413,14 +447,17 @@ def translate_code_switch(pieces: list[Piece], changes: list[Change],
     """Words and phrases of another language mixed into an instruction read in English from the code-switch lexicon,
     the longest form first ("la pila de la izquierda" -> "the pile on the left", "cuatro por ocho" -> "four by eight"),
     never across a comma; a filler ("pues") is dropped."""
-    table, firsts = _code_switch_table(lexicon), _lengths_by_first_word(lexicon)
+    table = _code_switch_table(lexicon)
     folded = [fold(p.word) for p in pieces]
     written = [as_written(p.word) for p in pieces]
+    lengths = _form_starts(folded, written, _lengths_by_start(lexicon))
+    if not lengths:
+        return pieces  # no form may start anywhere: nothing to read
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
         key: tuple[str, ...] = ()
-        for n in sorted({*firsts.get(folded[i], ()), *firsts.get(written[i], ())}, reverse=True):
+        for n in lengths.get(i, ()):
             if n > len(pieces) - i or any(p.paused for p in pieces[i:i + n - 1]):  # never across a comma
                 continue
             found = next((k for k in (tuple(written[i:i + n]), tuple(folded[i:i + n])) if k in table), ())
@@ -482,6 +519,22 @@ def _by_first_word(phrases: tuple[tuple[str, ...], ...] | frozenset) -> dict[str
     return {word: tuple(group) for word, group in out.items()}
 
 
+@lru_cache(maxsize=16)
+def _phrase_starts(phrases: tuple[tuple[str, ...], ...] | frozenset) -> frozenset[tuple[str, ...]]:
+    """How ``phrases`` start: a phrase of one word with that word, a longer one with its first two."""
+    return frozenset(phrase[:2] for phrase in phrases)
+
+
+def _may_start(pieces: Sequence[Piece], phrases: tuple[tuple[str, ...], ...] | frozenset) -> bool:
+    """Whether one of ``phrases`` may start anywhere in ``pieces`` (where none may, ``_starts`` finds none): a word
+    alone (``zip(low)``: each word as a tuple of one) or two words in a row are how one starts (``_phrase_starts``)."""
+    low = [p.word.lower() for p in pieces]
+    if _by_first_word(phrases).keys().isdisjoint(low):
+        return False  # no word is the first word of one (most texts): no pairs to look up
+    starts = _phrase_starts(phrases)
+    return not (starts.isdisjoint(zip(low)) and starts.isdisjoint(zip(low, low[1:])))
+
+
 def _starts(pieces: Sequence[Piece], i: int, phrases: tuple[tuple[str, ...], ...] | frozenset) -> int:
     """The length of the phrase of ``phrases`` that starts at ``i`` (0: none), the longest first."""
     if i >= len(pieces):
@@ -530,6 +583,8 @@ def split_compounds(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A compound typed with hyphens read as its words, as said apart ("left-line" is the left line, "bottom-row" the
     bottom row: ``joined_compound``), before the lexicons read them ("stud-vert" -> stud, vert -> stud, vertical);
     each word comes from the worker's one word."""
+    if "-" not in "".join([p.word for p in pieces]):
+        return pieces  # a compound is typed with a hyphen
     out: list[Piece] = []
     for p in pieces:
         parts = joined_compound(p.word)
@@ -547,6 +602,8 @@ def split_compounds(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
 def drop_fillers(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """Fillers ("um", "uh", "you know") are dropped; the word before one is paused after, and a word broken off
     before one stays broken off."""
+    if not _may_start(pieces, FILLERS):
+        return pieces  # no word starts a filler
     pieces = list(pieces)  # a turn's start moves past a filler dropped: on a copy, the step stays pure
     out: list[Piece] = []
     i = 0
@@ -578,22 +635,23 @@ def _radio_digit(word: str) -> str:
     return radio_digit_readings().get(word, word)
 
 
-def _number_parts(word: str) -> list[str] | None:
-    """The parts of a word that belongs to a spoken or split number ("one-oh-eight" -> ["one", "oh", "eight"]),
-    or None."""
+@lru_cache(maxsize=65536)
+def _number_parts(word: str) -> tuple[str, ...] | None:
+    """The parts of a word that belongs to a spoken or split number ("one-oh-eight" -> ("one", "oh", "eight")),
+    or None. A pure function of the word, so each word is read once."""
     w = _radio_digit(fold(word))  # "zéro" is "zero", "fife" is "five"
     if _DIGITS.match(w) or w in DIGIT_WORDS or w in TEEN_WORDS or w in TENS_WORDS or w in REPEATS or w == "hundred":
-        return [w]
+        return (w,)
     marked = _MARKED_ID.match(w) or _CASE_ENDING_ID.match(w)
     if marked:
-        return [marked.group(1)]
+        return (marked.group(1),)
     split = _SPLIT_ID.match(w)
     if split:
-        return [split.group(1), split.group(2)]
+        return split.group(1), split.group(2)
     parts = [_radio_digit(p) for p in w.split("-")]
     if len(parts) > 1 and all(p in DIGIT_WORDS or p in TEEN_WORDS or p in TENS_WORDS or p in REPEATS or _DIGITS.match(p)
                               for p in parts if p):
-        return [p for p in parts if p]
+        return tuple(p for p in parts if p)
     return None
 
 
@@ -690,18 +748,36 @@ def _repaired_id(before: str, repair: Sequence[Piece]) -> tuple[str, int] | None
     return None
 
 
-def _first_id(run: Sequence[Piece], k: int) -> tuple[int, int] | None:
+def _first_id(run: Sequence[str], k: int) -> tuple[int, int] | None:
     """The first stretch of a run of number words from ``k`` on that says an id, as long as it can be: "station two,
     five double-oh three one two" has one in its last five words, "500 320 five hundred one-oh-oh" two."""
     for a in range(k, len(run)):
         for b in range(len(run), a, -1):
-            if id_of(_parts(run[a:b])):
+            if id_of(_parts_of(run[a:b])):
                 return a, b
     return None
 
 
+@lru_cache(maxsize=65536)
+def _ids_in_run(run: tuple[str, ...]) -> tuple[tuple[int, int, str], ...]:
+    """The ids a run of number words says, in order: where each starts and ends in the run, and its digits
+    (``_first_id``). A pure function of the words, so each run met again ("500104") is read once."""
+    ids = []
+    k = 0
+    while (found := _first_id(run, k)) is not None:
+        a, b = found
+        ids.append((a, b, id_of(_parts_of(run[a:b])) or ""))
+        k = b
+    return tuple(ids)
+
+
+def _parts_of(words: Iterable[str]) -> list[str]:
+    """The number parts of words of a number, in order (``_number_parts``)."""
+    return [part for word in words for part in _number_parts(word) or ()]
+
+
 def _parts(run: Sequence[Piece]) -> list[str]:
-    return [part for p in run for part in _number_parts(p.word) or []]
+    return _parts_of(p.word for p in run)
 
 
 def _number_run(pieces: Sequence[Piece], i: int) -> int:
@@ -733,21 +809,20 @@ def read_ids(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
-        j = _number_run(pieces, i)
-        if j == i:
+        if _number_parts(pieces[i].word) is None:  # most words start no run of number words
             out.append(pieces[i])
             i += 1
             continue
+        j = _number_run(pieces, i)
         run = pieces[i:j]
         k = 0
-        while (found := _first_id(run, k)) is not None:
-            a, b = found
+        for a, b, digits in _ids_in_run(tuple(p.word for p in run)):
             out += run[k:a]
-            out.append(_id_piece(run[a:b], id_of(_parts(run[a:b])) or "", changes))
+            out.append(_id_piece(run[a:b], digits, changes))
             k = b
         rest = run[k:]
-        cue = _starts(pieces, j, REPAIR_CUES) if j < len(pieces) else 0
-        if rest and rest[-1].broken_off and cue:
+        cue = _starts(pieces, j, REPAIR_CUES) if rest and rest[-1].broken_off and j < len(pieces) else 0
+        if cue:  # a repair of the run's broken-off end follows
             end = _number_run(pieces, j + cue)
             for a in range(len(rest)):
                 fixed = _repaired_id(digits_of(_parts(rest[a:])) or "", pieces[j + cue:end])
@@ -762,19 +837,39 @@ def read_ids(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     return out
 
 
+@dataclass(frozen=True)
+class PluralSize:
+    """A word that may be a size in the plural: its singular, and whether it says a size by itself."""
+
+    singular: str  #: "2x8s" -> "2x8", "eights" -> "eight"
+    says_a_size: bool  #: a side before "x" or "by" ("2x8s", "two-by-eights"), not a side alone ("eights": after "by")
+
+
+@lru_cache(maxsize=65536)
+def _plural_size(word: str) -> PluralSize | None:
+    """A word that may be a size in the plural (``singular_sizes``), or None: an id in the plural ("500104s") is
+    none. A pure function of the word, so each word is read once."""
+    plural = _PLURAL_SIZE.match(word)
+    if not plural or ID_PATTERN.match(plural.group(1)):
+        return None
+    return PluralSize(plural.group(1), bool(_SIZE_WORD.search(word)))
+
+
 def singular_sizes(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A size in the plural names one panel of that size: "the 2x8s" -> "2x8", "two-by-eights" -> "two-by-eight",
     "four by eights" -> "four by eight"."""
+    if all(_plural_size(p.word) is None for p in pieces):
+        return pieces  # no word may be a size in the plural
     out: list[Piece] = []
     for k, p in enumerate(pieces):
-        plural = _PLURAL_SIZE.match(p.word)
-        after_by = k > 0 and pieces[k - 1].word.lower() in ("by", "x")
-        if plural and (after_by or _SIZE_WORD.search(p.word)) and not ID_PATTERN.match(plural.group(1)):
-            changes.append(Change("size", p.word, plural.group(1)))
-            out.append(Piece(plural.group(1), p.said, p.broken_off))
+        plural = _plural_size(p.word)
+        if plural and (plural.says_a_size or k > 0 and pieces[k - 1].word.lower() in ("by", "x")):
+            changes.append(Change("size", p.word, plural.singular))
+            out.append(Piece(plural.singular, p.said, p.broken_off))
         else:
             out.append(p)
     return out
+
 
 
 # --- metric sizes -------------------------------------------------------------------------------------------
@@ -793,14 +888,24 @@ METRIC_UNITS: dict[str, str] = {
 _WITH_UNIT = re.compile(r"^(\d+(?:[.,]\d+)?)(mm|cm|m)$", re.I)
 _METRIC_PAIR = re.compile(r"^(\d+(?:\.\d+)?)[x×*](\d+(?:\.\d+)?)(mm|cm|m)?$", re.I)
 _SIDE_WORDS = frozenset({"wide", "long", "high", "tall", "across"})
+_THOUSANDS = re.compile(r"\d{1,2},\d{3}")
 
 
 def _feet(number: str, unit: str | None) -> str | None:
     """The feet a nominal metric side stands for ("1200", "mm" -> "4"); without a unit, millimetres or metres."""
-    number = number.replace(",", "") if unit != "m" and re.fullmatch(r"\d{1,2},\d{3}", number) else \
-        number.replace(",", ".")
+    number = number.replace(",", "") if unit != "m" and _THOUSANDS.fullmatch(number) else number.replace(",", ".")
     units = [unit] if unit else ["mm", "m"]
     return next((METRIC_SIDES[u][number] for u in units if number in METRIC_SIDES[u]), None)
+
+
+@lru_cache(maxsize=65536)
+def _may_be_metric(word: str) -> bool:
+    """Whether ``metric_sizes`` may read the (lower-case) word written in digits as a side: a side with its unit
+    ("1.2m"), a pair of sides ("1200x2400"), or a side in some unit ("1200", "0.6", "60"). Not "2x8" or "500104"."""
+    attached, pair = _WITH_UNIT.match(word), _METRIC_PAIR.match(word)
+    return bool(attached and _feet(attached.group(1), attached.group(2).lower())
+                or pair and _feet(pair.group(1), pair.group(3)) and _feet(pair.group(2), pair.group(3))
+                or any(_feet(word, unit) for unit in METRIC_SIDES))
 
 
 #: Spoken hundreds of millimetres ("twelve hundred") and spoken metres ("one point two"): the words of a side.
@@ -860,6 +965,9 @@ def metric_sizes(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     "4ft"), or both sides of a size without one ("1200 x 2400" -> "4 x 8", "1.2 by 1.8" -> "4 by 6", "600 wide by
     2400 long"), in digits or in words ("twelve hundred by twenty-four hundred", "one point two metres"). A lone
     number without a unit is left as said, and so is any other measure ("25 mm screws")."""
+    low = [p.word.lower() for p in pieces]
+    if "hundred" not in low and "point" not in low and not any(map(_may_be_metric, low)):
+        return pieces  # no side in words (they need "hundred" or "point": ``_spoken_side``) or in digits
     pieces, spoken = _spoken_sides(pieces)
     out = list(pieces)
     low = [p.word.lower() for p in pieces]
@@ -893,6 +1001,8 @@ def resolve_false_starts(pieces: list[Piece], changes: list[Change]) -> list[Pie
     a repair cue ("the four by- no, the two by eight") the words from where the repair starts again are dropped
     with the cue (the final intention counts). The repair starts again at the last earlier word equal to its own
     first word, or at the broken-off word."""
+    if not any(p.broken_off for p in pieces):
+        return pieces  # no word broken off: no false start
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
@@ -951,6 +1061,8 @@ def drop_chat_stamps(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """The header of each message of a chat copied in ("[07:09] Kev:", "Kev (07:09):"), at the start of a line, is
     dropped: a time, a date and a sender's name say nothing of the command (a time said inside an instruction, "at
     12:30", stays)."""
+    if not any(p.labelled for p in pieces):
+        return pieces  # a header ends with its colon (``_stamp_at``)
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
@@ -1002,9 +1114,9 @@ def drop_email_frame(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """An instruction sent as an e-mail reply: its header lines ("Subject: RE: East wall, L2"), the lines it quotes
     from the message it answers ("> is the 2x8 in the top row here?": what was asked, not what is meant now) and its
     sign-off after a blank line ("Dana | PM | Sent from my phone") are dropped."""
+    if len({p.cell[0] for p in pieces}) < 2:
+        return pieces  # all on one line (fewer than two ``_lines``): no frame to drop
     lines = _lines(pieces)
-    if len(lines) < 2:
-        return pieces
     drop: set[int] = set()
     for line in lines:
         first = pieces[line[0]]
@@ -1092,6 +1204,8 @@ def read_star_corrections(pieces: list[Piece], changes: list[Change]) -> list[Pi
     """A value typed with a star after a message ("*500105", "*left"), as chat users correct a word they sent, takes
     the place of the last value of its kind before it (an id, an ordinal, a side, a row): the final intention counts.
     With none before it, the value stays where it is, its star dropped."""
+    if "*" not in "".join([p.word for p in pieces]):
+        return pieces  # no star typed
     out: list[Piece] = []
     for p in pieces:
         value = p.word.strip("*")
@@ -1138,6 +1252,8 @@ _ANCHOR_MODIFIERS = frozenset({*_BACK_ANCHOR_WORDS, "far", "very", "left", "righ
 
 #: The words an anchor said first may start with: a lead's first word, a determiner, a word that points back.
 _ANCHOR_STARTS = frozenset({w[0] for w in _ANCHOR_LEADS} | {"the", "that", "this"} | _BACK_ANCHOR_WORDS)
+#: A lead's first word or a word that points back: an anchor said first has one of them (``anchor_last``).
+_LEAD_OR_BACK = frozenset({w[0] for w in _ANCHOR_LEADS} | _BACK_ANCHOR_WORDS)
 
 
 def _stud_anchor(pieces: Sequence[Piece], j: int) -> tuple[int, bool]:
@@ -1190,14 +1306,27 @@ def _step_after(pieces: Sequence[Piece], k: int) -> int:
     return e + 1
 
 
+def _may_step_from_an_anchor(low: Sequence[str]) -> bool:
+    """Whether ``anchor_last`` may read a step counted from an anchor in the (lower-case) words: a lead or a word that
+    points back (``_LEAD_OR_BACK``), after it a count, and a side at most five words after the count
+    (``_step_after``: four linking words at most between them)."""
+    if _LEAD_OR_BACK.isdisjoint(low) or _STEP_COUNTS.isdisjoint(low):
+        return False  # most texts: no lead and no word that points back, or no count
+    first = next((k for k, w in enumerate(low) if w in _LEAD_OR_BACK), len(low))
+    return any(w in _STEP_COUNTS and ("left" in low[c + 1:c + 6] or "right" in low[c + 1:c + 6])
+               for c, w in enumerate(low[first + 1:], first + 1))
+
+
 def anchor_last(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A stud counted from an anchor said first, as verb-final languages put it and people thinking aloud do ("from
     the previous stud, two studs to the right", "starting at 500104 go three right", Hindi "pichhle stud se do stud
     right" once the code-switch lexicon has read it), read in the order the corpus says it: "two studs to the right
     of the previous stud". Without a lead ("from"), only an anchor that points back is one ("the last stud six stud
     right"): a bare id before a count is more often the end of another field."""
-    out: list[Piece] = []
     low = [p.word.lower() for p in pieces]
+    if not _may_step_from_an_anchor(low):
+        return pieces  # no lead or word that points back before a step: nothing to read
+    out: list[Piece] = []
     i = 0
     while i < len(pieces):
         if low[i] not in _ANCHOR_STARTS:  # most words start nothing here
@@ -1230,7 +1359,10 @@ _ROW_VALUES = frozenset({"top", "bottom"})
 _VALUE_NOUNS = frozenset({"row", "course", "stud", "pile", "stack", "one", "panel", "sheet", "line", "side"})
 
 
+@lru_cache(maxsize=65536)
 def _value_kind(word: str) -> str | None:
+    """The kind of value a word is ("id", "ordinal", "side", "row"), or None. A pure function of the word, so each
+    word is read once."""
     low = word.lower()
     if ID_PATTERN.match(low):
         return "id"
@@ -1261,6 +1393,9 @@ def resolve_value_repairs(pieces: list[Piece], changes: list[Change]) -> list[Pi
     and so are the words that say how a new id lies from the old ("500105- no, one more over to the right, 500106").
     Two values of a kind said without a break or a cue ("500104, 500105") are left for the IM (two values: a
     question)."""
+    kinds = [kind for p in pieces if (kind := _value_kind(p.word))]
+    if len(kinds) == len(set(kinds)) or not (any(p.broken_off for p in pieces) or _may_start(pieces, REPAIR_CUES)):
+        return pieces  # a value is taken back by another of its kind, after a break or with a repair cue
     out: list[Piece] = []
     i = 0
     while i < len(pieces):
@@ -1311,6 +1446,8 @@ def _late_repair(pieces: Sequence[Piece]) -> tuple[int, int, int, int] | None:
     """The first value taken back late in ``pieces``: (the old value, the cue, the value meant, the end of what goes),
     or None (``resolve_late_repairs``). Without the pauses (a text said, or typed with no punctuation) none is read:
     "... on 500109 no wait the one marked 500102" may take back the panel or the stud, and the decision asks."""
+    if not any(p.paused or p.stopped for p in pieces) or not _may_start(pieces, REPAIR_CUES):
+        return None  # nothing is taken back late without a pause or a full stop before a repair cue
     for c in range(1, len(pieces)):
         cue = _starts(pieces, c, REPAIR_CUES)
         if not cue or not (pieces[c - 1].paused or pieces[c - 1].stopped):
@@ -1567,13 +1704,41 @@ def split_unspaced(chunk: str, lexicon: Path | str = CODE_SWITCH_PATH) -> list[s
     return out
 
 
+@dataclass(frozen=True)
+class Chunk:
+    """A chunk of the worker's text without white space, as ``_pieces`` reads it: its words (each as said and as
+    read) and what follows it."""
+
+    words: tuple[tuple[str, str], ...]
+    broken_off: bool
+    paused: bool
+    stopped: bool
+    labelled: bool
+
+
+@lru_cache(maxsize=65536)
+def _read_chunk(raw: str) -> Chunk:
+    """A chunk of text without white space read into words (``corpus.io.tokenize``): a word broken off with a dash
+    loses the dash, a label's full stop is kept for the lexicon, full-width letters and other scripts' digits are
+    read as ASCII. A pure function of the chunk, so each chunk met again is read once."""
+    low = raw.lower()
+    broken_off = bool(_BROKEN_OFF.search(raw))
+    words = []
+    for word in tokenize(raw):
+        read = low if low in _READ_AS_TYPED else (word.rstrip("-–—") or word) if broken_off else word
+        words.append((word, read.translate(_WIDE_CHARACTERS)))
+    return Chunk(tuple(words), broken_off, paused=bool(_PAUSE.search(raw)), stopped=bool(_STOP.search(raw)),
+                 labelled=raw.endswith(":"))
+
+
 def _pieces(text: str) -> tuple[list[str], list[Piece]]:
     """The worker's words (as ``corpus.io.tokenize`` splits them, a script written without spaces cut into words by
     ``split_unspaced``) and a piece for each: a word broken off with a dash loses the dash; a label's full stop is
-    kept for the lexicon."""
+    kept for the lexicon (``_read_chunk``)."""
     said: list[str] = []
     pieces: list[Piece] = []
-    text = text.translate(_SPACED_MARKS)
+    if not text.isascii():  # the marks of ``_SPACED_MARKS`` are none of them ASCII
+        text = text.translate(_SPACED_MARKS)
     for line, text_line in enumerate(text.split("\n")):
         cell = 0
         quoted = text_line.lstrip().startswith(">")
@@ -1583,17 +1748,12 @@ def _pieces(text: str) -> tuple[list[str], list[Piece]]:
             if UNSPACED.search(between_tabs):
                 chunks = [word for chunk in chunks for word in split_unspaced(chunk)]
             for raw in chunks:
-                low = raw.lower()
-                broken_off = bool(_BROKEN_OFF.search(raw))
-                paused = bool(_PAUSE.search(raw))
-                stopped = bool(_STOP.search(raw))
-                for word in tokenize(raw):
-                    read = low if low in _READ_AS_TYPED else (word.rstrip("-–—") or word) if broken_off else word
-                    read = read.translate(_WIDE_CHARACTERS)
-                    pieces.append(Piece(read, (len(said),), broken_off, paused=paused, cell=(line, cell),
-                                        labelled=raw.endswith(":"), stopped=stopped, quoted=quoted))
+                chunk = _read_chunk(raw)
+                for word, read in chunk.words:
+                    pieces.append(Piece(read, (len(said),), chunk.broken_off, paused=chunk.paused, cell=(line, cell),
+                                        labelled=chunk.labelled, stopped=chunk.stopped, quoted=quoted))
                     said.append(word)
-                cell += paused
+                cell += chunk.paused
     return said, pieces
 
 
@@ -1611,8 +1771,8 @@ def normalise(text: str) -> Normalised:
     changes: list[Change] = []
     for step in STEPS:
         pieces = step(pieces, changes)
-    return Normalised(tuple(said), tuple(p.word for p in pieces), tuple(p.said for p in pieces), tuple(changes),
-                      tuple(p.role for p in pieces))
+    return Normalised(tuple(said), tuple([p.word for p in pieces]), tuple([p.said for p in pieces]), tuple(changes),
+                      tuple([p.role for p in pieces]))
 
 
 def normalise_text(text: str) -> str:

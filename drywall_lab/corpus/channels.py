@@ -844,10 +844,10 @@ _SUM_FILLER = frozenset({"to", "the", "over", "studs", "stud", "places", "place"
 _SUM_ANCHORS = {("previous",): "prev", ("last",): "last", ("previous", "one"): "prev", ("last", "one"): "last"}
 
 
-def _sum_at(sentence: Phrase, i: int) -> tuple[int, str, str, int] | None:
-    """A stud counted from the previous one or from an id that starts at ``i`` ("two studs to the right of the
-    previous stud", "one to the left of 500104"): (the end of its words, the anchor's name in a sum: "prev", "last"
-    or the id, the side, the count), or None."""
+def _count_and_side(sentence: Phrase, i: int) -> tuple[int, str | None] | None:
+    """A count tagged ``St_loc1`` at ``i`` and the words of its step up to its side ("two studs to the right"): the
+    position after the side (or after the step's words, when no side is said) and the side, or None when no count
+    starts at ``i``."""
     tok = sentence[i]
     if not (tok.is_word and tok.tag == "St_loc1" and tok.word.lower() in _COUNTS):
         return None
@@ -856,6 +856,17 @@ def _sum_at(sentence: Phrase, i: int) -> tuple[int, str, str, int] | None:
             sentence[j].tag == "O" and sentence[j].word.lower() in _SUM_FILLER)) and side is None:
         side = sentence[j].word.lower() if sentence[j].word.lower() in ("left", "right") else None
         j += 1
+    return j, side
+
+
+def _sum_at(sentence: Phrase, i: int) -> tuple[int, str, str, int] | None:
+    """A stud counted from the previous one or from an id that starts at ``i`` ("two studs to the right of the
+    previous stud", "one to the left of 500104"): (the end of its words, the anchor's name in a sum: "prev", "last"
+    or the id, the side, the count), or None."""
+    counted = _count_and_side(sentence, i)
+    if counted is None:
+        return None
+    j, side = counted
     k = j
     while k < len(sentence) and sentence[k].is_word and sentence[k].tag == "O" and sentence[k].word.lower() in ("of", "the"):
         k += 1
@@ -869,7 +880,7 @@ def _sum_at(sentence: Phrase, i: int) -> tuple[int, str, str, int] | None:
         return None
     if e < len(sentence) and sentence[e].is_word and sentence[e].tag == "O" and sentence[e].word.lower() in ("stud", "one"):
         e += 1
-    return e, name, side, _COUNTS[tok.word.lower()]
+    return e, name, side, _COUNTS[sentence[i].word.lower()]
 
 
 def _written_sums(sentence: Phrase, spaced: bool = False) -> Phrase:
@@ -923,14 +934,10 @@ def _counted_step(sentence: Phrase, i: int, links: tuple[str, ...] = ("of",)) ->
     left of 500104"; with ``links`` ("of", "from"), "two right from 500104" too): (the end of its words, the side,
     the position of the link), or None. The anchor is the ``St_loc2`` words after the link (a few untagged words may
     come first), and a few untagged nouns after them ("stud", "one")."""
-    tok = sentence[i]
-    if not (tok.is_word and tok.tag == "St_loc1" and tok.word.lower() in _COUNTS):
+    counted = _count_and_side(sentence, i)
+    if counted is None:
         return None
-    j, side = i + 1, None
-    while j < len(sentence) and sentence[j].is_word and (sentence[j].tag == "St_loc1" or (
-            sentence[j].tag == "O" and sentence[j].word.lower() in _SUM_FILLER)) and side is None:
-        side = sentence[j].word.lower() if sentence[j].word.lower() in ("left", "right") else None
-        j += 1
+    j, side = counted
     if side is None or sentence[j - 1].word.lower() != side or j >= len(sentence) or sentence[j].word.lower() not in links:
         return None
     k = j + 1

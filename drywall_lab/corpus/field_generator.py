@@ -38,7 +38,7 @@ import hashlib
 import random
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Callable
+from typing import Callable, Sequence
 
 from drywall_lab.corpus import channels as C
 from drywall_lab.corpus import field_phrases as F
@@ -1481,14 +1481,19 @@ def _split_once(split: str, n: int, rng: random.Random, site: Site) -> list[dict
     return G.episode_rows(rng, site, n, lambda: rng.randint(1, 8), FIELD_REFUSAL_RATE, FIELD_WEIGHTS, say)
 
 
+def takes_back_only_repeats(words: Sequence[str], tags: Sequence[str]) -> bool:
+    """Whether every word the correction rule takes back from ``tags`` is said again later with the same tag (the
+    guidelines tag only the final intention, so gold tags take back nothing else)."""
+    taken = TaggedInstruction(list(words), list(tags))
+    return all(any(W.normalise(taken.words[j]) == W.normalise(words[i]) for j in range(i + 1, len(taken.words))
+                   if taken.tags[j] == tags[i]) for i in taken.taken_back)
+
+
 def reads_as_meant(row: dict, site: Site | None = None) -> bool:
-    """Whether a row's gold tags read as it means: they give its expected command or refusal, and what the
-    correction rule takes back from them is a word said again later with the same tag (the guidelines tag only the
-    final intention). Every row of every split holds (tested); a saying that does not is left out."""
-    taken = TaggedInstruction(row["words"], row["tags"])
-    return task_correct(row, site=site) and all(
-        any(W.normalise(taken.words[j]) == W.normalise(row["words"][i]) for j in range(i + 1, len(taken.words))
-            if taken.tags[j] == row["tags"][i]) for i in taken.taken_back)
+    """Whether a row's gold tags read as it means: they give its expected command or refusal, and take back only
+    words said again (``takes_back_only_repeats``). Every row of every split holds (tested); a saying that does not
+    is left out."""
+    return task_correct(row, site=site) and takes_back_only_repeats(row["words"], row["tags"])
 
 
 def generate_field_split(split: str, n: int | None = None, seed: int = FIELD_SEED, site: Site | None = None) -> list[dict]:

@@ -307,11 +307,11 @@ def split_fields(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     ("3rd-from-right"). A label whose value is one word that says which ("size=same", "row=top", "pile:left") is
     read in the order people say it ("same size", "top row", "left pile"). A separator said alone ("|", "->", "=")
     stays: the IM reads it as punctuation, a boundary between fields."""
-    if all(_field_words(p.word) is None for p in pieces):
+    fields = [_field_words(p.word) for p in pieces]
+    if all(words is None for words in fields):
         return pieces  # no word glues fields or a position's words
     out: list[Piece] = []
-    for p in pieces:
-        words = _field_words(p.word)
+    for p, words in zip(pieces, fields):
         if words is None:
             out.append(p)
             continue
@@ -858,18 +858,17 @@ def _plural_size(word: str) -> PluralSize | None:
 def singular_sizes(pieces: list[Piece], changes: list[Change]) -> list[Piece]:
     """A size in the plural names one panel of that size: "the 2x8s" -> "2x8", "two-by-eights" -> "two-by-eight",
     "four by eights" -> "four by eight"."""
-    if all(_plural_size(p.word) is None for p in pieces):
+    plurals = [_plural_size(p.word) for p in pieces]
+    if all(plural is None for plural in plurals):
         return pieces  # no word may be a size in the plural
     out: list[Piece] = []
-    for k, p in enumerate(pieces):
-        plural = _plural_size(p.word)
+    for k, (p, plural) in enumerate(zip(pieces, plurals)):
         if plural and (plural.says_a_size or k > 0 and pieces[k - 1].word.lower() in ("by", "x")):
             changes.append(Change("size", p.word, plural.singular))
             out.append(Piece(plural.singular, p.said, p.broken_off))
         else:
             out.append(p)
     return out
-
 
 
 # --- metric sizes -------------------------------------------------------------------------------------------
